@@ -1,0 +1,34 @@
+// io/error.h — the exception for bad input (files, records, options). Readers throw it with
+// the exact place; cli/main.cpp catches it once, prints one line and exits non-zero.
+// Kernels and passes never throw; broken invariants are SOFTMOL_CHECK (common/check.h).
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+namespace softmol::io {
+
+// Where the problem is. line/column 0 = unknown; `detail` names a frame or record when a line
+// does not apply ("frame 17"); file may be an option name ("--size").
+struct SourceLocation {
+  std::string file;
+  long line = 0;
+  int column = 0;
+  std::string detail;
+  std::string ToString() const;  // "1abc.pdb:1204:31", "md.xtc: frame 17", "--size"
+};
+
+class InputError : public std::runtime_error {
+ public:
+  // what() is "<where>: <message>", e.g. "1abc.pdb:1204:31: x coordinate is not a number: 'l2.500'"
+  InputError(SourceLocation where, std::string_view message);
+  const SourceLocation& where() const noexcept { return where_; }
+  const std::string& message() const noexcept { return message_; }
+
+ private:
+  SourceLocation where_;
+  std::string message_;
+};
+
+}  // namespace softmol::io

@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# scripts/build.sh [PRESET] — installs dependencies (first use) and builds a CMake preset
+# (default: release). The build folder is build/<preset>.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+preset=${1:-release}
+scripts/setup.sh
+jobs=$(nproc 2>/dev/null || echo 2)
+if [ ! -f "build/$preset/CMakeCache.txt" ]; then
+  cmake --preset "$preset" -G Ninja >/dev/null
+fi
+cmake --build --preset "$preset" -j "$jobs"

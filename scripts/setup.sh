@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# scripts/setup.sh — installs softmol's build dependencies, all Debian 12 packages.
+# Idempotent: packages already installed are skipped, and nothing runs when all are there.
+# Uses apt-get directly as root, sudo otherwise.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libglm-dev libopenimageio-dev libtbb-dev libbenchmark-dev libgtest-dev gemmi-dev
+  libhwy-dev libcli11-dev nlohmann-json3-dev zlib1g-dev
+  clang libclang-rt-14-dev   # libFuzzer targets (scripts/fuzz.sh)
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+
+if [ "$(id -u)" -eq 0 ]; then as_root=(); else as_root=(sudo); fi
+echo "softmol setup: installing ${missing[*]}" >&2
+export DEBIAN_FRONTEND=noninteractive
+"${as_root[@]}" apt-get update -qq
+"${as_root[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2
