@@ -4,7 +4,13 @@ find_package(Threads REQUIRED)
 find_package(glm CONFIG REQUIRED)             # libglm-dev
 find_package(TBB CONFIG REQUIRED)             # libtbb-dev
 find_package(hwy CONFIG REQUIRED)             # libhwy-dev (Highway 1.0.3)
-find_package(OpenImageIO CONFIG REQUIRED)     # libopenimageio-dev
+# libopenimageio-dev: its CMake config names /usr/include/opencv4 (absent without OpenCV),
+# so use its pkg-config file instead.
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(OIIO REQUIRED IMPORTED_TARGET OpenImageIO)
+add_library(softmol_oiio INTERFACE)
+add_library(softmol::oiio ALIAS softmol_oiio)
+target_link_libraries(softmol_oiio INTERFACE PkgConfig::OIIO)
 find_package(CLI11 CONFIG REQUIRED)           # libcli11-dev
 find_package(nlohmann_json CONFIG REQUIRED)   # nlohmann-json3-dev
 find_package(ZLIB REQUIRED)                   # zlib1g-dev (gemmi's gzip input)

@@ -8,7 +8,10 @@ std::string SourceLocation::ToString() const {
     s += ':' + std::to_string(line);
     if (column > 0) s += ':' + std::to_string(column);
   }
-  if (!detail.empty()) s += (s.empty() ? "" : ": ") + detail;
+  if (!detail.empty()) {
+    if (!s.empty()) s += ": ";
+    s += detail;
+  }
   return s;
 }
 

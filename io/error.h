@@ -6,12 +6,18 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 
 namespace softmol::io {
 
 // Where the problem is. line/column 0 = unknown; `detail` names a frame or record when a line
 // does not apply ("frame 17"); file may be an option name ("--size").
 struct SourceLocation {
+  SourceLocation() = default;
+  // Implicit, so `InputError({path}, ...)` and `InputError({path, line}, ...)` read naturally.
+  SourceLocation(std::string file_, long line_ = 0, int column_ = 0, std::string detail_ = {})
+      : file(std::move(file_)), line(line_), column(column_), detail(std::move(detail_)) {}
+
   std::string file;
   long line = 0;
   int column = 0;

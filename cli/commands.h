@@ -1,0 +1,48 @@
+// cli/commands.h — the subcommands of `softmol`: each declares its options on a CLI11 app
+// (Add*Command) and runs from the parsed values (Run*). Errors are thrown as io::InputError
+// naming the file or option; main.cpp reports them.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+namespace softmol::cli {
+
+struct InfoArgs {
+  std::string molecule;
+  std::string assembly;
+  std::string trajectory;
+  bool json = false;
+  int threads = 0;
+};
+void AddInfoCommand(CLI::App& app, InfoArgs& args);
+int RunInfo(const InfoArgs& args);
+
+struct RenderArgs {
+  std::string molecule;
+  std::string output = "softmol.png";
+  std::string size = "1024x768";
+  std::string style = "spacefill";
+  std::string assembly;
+  std::string camera;       // EX,EY,EZ,TX,TY,TZ,UX,UY,UZ
+  std::string rotate;       // X,Y,Z degrees
+  std::string background = "ffffff";
+  std::string aov;          // depth,normal,id
+  std::string profile;      // Chrome trace-event JSON
+  double fov = 30.0;
+  double ortho = 0.0;
+  double zoom = 1.0;
+  double nearPlane = 0.0, farPlane = 0.0;
+  int ssaa = 1;
+  int threads = 0;
+  int repeat = 1;
+  int tileSize = 32;
+  bool transparent = false;
+  bool quiet = false;
+};
+void AddRenderCommand(CLI::App& app, RenderArgs& args);
+int RunRender(const RenderArgs& args);
+
+}  // namespace softmol::cli

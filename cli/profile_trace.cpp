@@ -1,0 +1,62 @@
+#include "cli/profile_trace.h"
+
+#include <filesystem>
+#include <fstream>
+
+#include "io/error.h"
+
+namespace softmol::cli {
+
+void ProfileTrace::AddComplete(const std::string& name, const std::string& category, double startMs,
+                               double durationMs) {
+  events_.push_back({{"name", name}, {"cat", category}, {"ph", "X"}, {"pid", 1}, {"tid", 1},
+                     {"ts", startMs * 1000.0}, {"dur", durationMs * 1000.0}});
+}
+
+void ProfileTrace::AddFrame(int index, double startMs, const effects::RenderedFrame& f) {
+  AddComplete("frame", "frame", startMs, f.totalMs);
+  events_.back()["args"] = {{"index", index}};
+  for (const effects::PassTiming& p : f.passes) {
+    AddComplete(p.name, "pass", startMs + p.startMs, p.durationMs);
+    if (p.name == "gbuffer") {
+      // The raster stages run one after another inside the G-buffer pass.
+      double t = startMs + p.startMs;
+      const raster::FrameStats& s = f.rasterStats;
+      const std::pair<const char*, double> stages[] = {
+          {"setup", s.setupMs}, {"binning", s.binningMs}, {"raster", s.rasterMs}};
+      for (const auto& [name, ms] : stages) {
+        AddComplete(name, "raster", t, ms);
+        t += ms;
+      }
+    }
+  }
+  const raster::FrameStats& s = f.rasterStats;
+  events_.push_back({{"name", "raster counters"}, {"ph", "C"}, {"pid", 1}, {"tid", 1},
+                     {"ts", startMs * 1000.0},
+                     {"args", {{"primitives set up", s.primitivesSetUp},
+                               {"primitives culled", s.primitivesCulled},
+                               {"bin entries", s.binEntries},
+                               {"fragments tested", s.fragmentsTested},
+                               {"fragments kept", s.fragmentsKept},
+                               {"tiles skipped by depth", s.tilesSkippedByDepth}}}});
+}
+
+void ProfileTrace::Write(const std::string& path) const {
+  const nlohmann::json doc = {{"traceEvents", events_}, {"displayTimeUnit", "ms"}};
+  namespace fs = std::filesystem;
+  const fs::path p(path);
+  const fs::path tmp = p.parent_path() / ("." + p.filename().string() + ".tmp");
+  {
+    std::ofstream out(tmp);
+    out << doc.dump(1) << '\n';
+    if (!out) throw io::InputError({"--profile"}, "cannot write '" + path + "'");
+  }
+  std::error_code ec;
+  fs::rename(tmp, p, ec);
+  if (ec) {
+    fs::remove(tmp, ec);
+    throw io::InputError({"--profile"}, "cannot write '" + path + "': " + ec.message());
+  }
+}
+
+}  // namespace softmol::cli

@@ -1,0 +1,221 @@
+// cli/render_command.cpp — `softmol render MOLECULE -o out.png|out.exr`: loads the molecule,
+// builds the representation, frames the camera, renders through effects::RenderFrame and
+// writes the image (and AOVs), optionally timing every pass into a Chrome trace.
+#include <charconv>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string_view>
+
+#include <tbb/global_control.h>
+
+#include "cli/commands.h"
+#include "cli/load_molecule.h"
+#include "cli/parse.h"
+#include "cli/profile_trace.h"
+#include "effects/color.h"
+#include "effects/frame_renderer.h"
+#include "io/error.h"
+#include "io/image_io.h"
+#include "raster/camera.h"
+#include "raster/representation.h"
+
+namespace softmol::cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+enum class OutputKind { kPng, kExr };
+
+OutputKind OutputKindOf(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == ".png") return OutputKind::kPng;
+  if (ext == ".exr") return OutputKind::kExr;
+  throw io::InputError({"-o"}, "output must end in .png or .exr, got '" + path + "'");
+}
+
+// NAME.png -> NAME.aov.exr, beside it.
+std::string SiblingAovPath(const std::string& png) {
+  std::filesystem::path p(png);
+  return (p.parent_path() / (p.stem().string() + ".aov.exr")).string();
+}
+
+raster::Style ParseStyle(const std::string& s) {
+  if (s == "spacefill") return raster::Style::kSpacefill;
+  if (s == "balls") return raster::Style::kBalls;
+  if (s == "licorice") return raster::Style::kLicorice;
+  if (s == "ellipsoids") return raster::Style::kEllipsoids;
+  throw io::InputError({"--style"}, "unknown style '" + s + "' (spacefill, balls, licorice, ellipsoids)");
+}
+
+uint32_t ParseAovs(const std::string& list) {
+  uint32_t aovs = 0;
+  for (const std::string& name : SplitList(list)) {
+    if (name == "depth") aovs |= effects::kAovDepth;
+    else if (name == "normal") aovs |= effects::kAovNormal;
+    else if (name == "id") aovs |= effects::kAovId;
+    else throw io::InputError({"--aov"}, "unknown AOV '" + name + "' (depth, normal, id)");
+  }
+  return aovs;
+}
+
+io::ImageFile ToExr(const effects::RenderedFrame& f, bool withColor) {
+  io::ImageFile img;
+  img.width = f.width;
+  img.height = f.height;
+  const size_t n = size_t(f.width) * size_t(f.height);
+  if (withColor) {
+    const char* names[4] = {"R", "G", "B", "A"};
+    for (size_t c = 0; c < 4; ++c) {
+      io::ImageChannel ch{names[c], std::vector<float>(n), {}};
+      for (size_t i = 0; i < n; ++i) ch.values[i] = f.rgba[4 * i + c];
+      img.channels.push_back(std::move(ch));
+    }
+  }
+  if (!f.depth.empty()) img.channels.push_back({"Z", f.depth, {}});
+  if (!f.normalX.empty()) {
+    img.channels.push_back({"N.x", f.normalX, {}});
+    img.channels.push_back({"N.y", f.normalY, {}});
+    img.channels.push_back({"N.z", f.normalZ, {}});
+  }
+  if (!f.id.empty()) img.channels.push_back({"id", {}, f.id});
+  return img;
+}
+
+}  // namespace
+
+void AddRenderCommand(CLI::App& app, RenderArgs& a) {
+  CLI::App* c = app.add_subcommand("render", "Render a molecule to PNG or EXR");
+  c->add_option("MOLECULE", a.molecule, "PDB or mmCIF file (plain or .gz)")->required();
+  c->add_option("-o,--output", a.output, "Output image: .png (sRGB 8-bit) or .exr (linear float + AOVs)")->capture_default_str();
+  c->add_option("--size", a.size, "Image size WIDTHxHEIGHT")->capture_default_str();
+  c->add_option("--style", a.style, "spacefill | balls | licorice | ellipsoids")->capture_default_str();
+  c->add_option("--assembly", a.assembly, "Build biological assembly ID");
+  c->add_option("--camera", a.camera, "Explicit camera EX,EY,EZ,TX,TY,TZ,UX,UY,UZ (eye, target, up; Å, world)");
+  c->add_option("--fov", a.fov, "Vertical field of view, degrees")->capture_default_str()->check(CLI::Range(0.1, 179.0));
+  c->add_option("--ortho", a.ortho, "Orthographic projection with this view height (Å)")->check(CLI::PositiveNumber);
+  c->add_option("--rotate", a.rotate, "Rotate the molecule about its centre by X,Y,Z degrees");
+  c->add_option("--zoom", a.zoom, "Zoom factor (> 1 moves closer)")->capture_default_str()->check(CLI::Range(1e-3, 1e3));
+  c->add_option("--near", a.nearPlane, "Near plane distance (Å); default fitted to the scene")->check(CLI::PositiveNumber);
+  c->add_option("--far", a.farPlane, "Far plane distance (Å); default fitted to the scene")->check(CLI::PositiveNumber);
+  c->add_option("--ssaa", a.ssaa, "Supersampling: N×N samples per pixel")->capture_default_str()->check(CLI::Range(1, 4));
+  c->add_option("--background", a.background, "Background colour RRGGBB (sRGB hex)")->capture_default_str();
+  c->add_flag("--transparent", a.transparent, "Transparent background (alpha 0)");
+  c->add_option("--aov", a.aov, "Extra outputs: depth,normal,id (EXR channels Z, N.x N.y N.z, id)");
+  c->add_option("--threads", a.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
+  c->add_option("--profile", a.profile, "Write per-pass timings as Chrome trace-event JSON (open in Perfetto)");
+  c->add_option("--repeat", a.repeat, "Render the frame N times (steady-state timings)")->capture_default_str()->check(CLI::Range(1, 100000));
+  c->add_option("--tile-size", a.tileSize, "Raster tile size in pixels")->capture_default_str()->check(CLI::IsMember({8, 16, 32, 64, 128}));
+  c->add_flag("-q,--quiet", a.quiet, "Print nothing on success");
+}
+
+int RunRender(const RenderArgs& a) {
+  // Validate every option before any work, so a typo costs nothing and writes nothing.
+  const OutputKind kind = OutputKindOf(a.output);
+  const ImageSize size = ParseSize(a.size, "--size");
+  const raster::Style style = ParseStyle(a.style);
+  const uint32_t aovs = ParseAovs(a.aov);
+  effects::RenderOptions ro;
+  ro.ssaa = a.ssaa;
+  ro.transparent = a.transparent;
+  ro.aovs = aovs;
+  ro.tileSize = a.tileSize;
+  const uint32_t bg = ParseHexColor(a.background, "--background");
+  const effects::LinearRgb bgLinear = effects::UnpackSrgb(bg);
+  ro.background = glm::vec3(bgLinear.r, bgLinear.g, bgLinear.b);
+  if (int64_t(size.width) * size.height * a.ssaa * a.ssaa > (int64_t(1) << 28))
+    throw io::InputError({"--ssaa"}, "size × ssaa² is more than 2^28 samples");
+  std::unique_ptr<tbb::global_control> threads;
+  if (a.threads > 0)
+    threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(a.threads));
+
+  ProfileTrace trace;
+  const Clock::time_point start = Clock::now();
+  const bool needsBonds = style == raster::Style::kBalls || style == raster::Style::kLicorice;
+  LoadedMolecule loaded = LoadMolecule(a.molecule, a.assembly, "", needsBonds);
+  double t = 0;
+  for (const StepTime& s : loaded.steps) {
+    trace.AddComplete(s.name, "load", t, s.ms);
+    t += s.ms;
+  }
+
+  Clock::time_point t0 = Clock::now();
+  raster::RepresentationOptions rep;
+  rep.style = style;
+  const raster::PrimitiveScene scene = raster::BuildRepresentation(loaded.molecule, rep);
+  const double repMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  trace.AddComplete("representation", "load", t, repMs);
+  if (scene.size() == 0)
+    throw io::InputError({a.molecule}, "nothing to draw in style '" + a.style + "'");
+
+  raster::Camera cam = raster::DefaultCamera(scene, size.width, size.height);
+  if (!a.camera.empty()) {
+    const std::vector<double> v = ParseNumbers(a.camera, 9, "--camera");
+    cam.eye = {v[0], v[1], v[2]};
+    cam.target = {v[3], v[4], v[5]};
+    cam.up = {v[6], v[7], v[8]};
+    const glm::dvec3 view = cam.target - cam.eye;
+    const glm::dvec3 side = glm::cross(view, cam.up);
+    if (glm::dot(view, view) == 0.0 || glm::dot(side, side) == 0.0)
+      throw io::InputError({"--camera"}, "eye and target coincide, or up is parallel to the view direction");
+  }
+  cam.fovYDegrees = a.fov;
+  if (a.ortho > 0) {
+    cam.orthographic = true;
+    cam.orthoHeight = a.ortho;
+  }
+  if (!a.rotate.empty()) {
+    const std::vector<double> r = ParseNumbers(a.rotate, 3, "--rotate");
+    raster::ApplyRotation(cam, {r[0], r[1], r[2]}, scene.Bounds().center);
+  }
+  if (a.zoom != 1.0) raster::ApplyZoom(cam, a.zoom);
+  raster::FitNearFar(cam, scene);
+  if (a.nearPlane > 0) cam.nearPlane = a.nearPlane;
+  if (a.farPlane > 0) cam.farPlane = a.farPlane;
+  if (cam.farPlane <= cam.nearPlane)
+    throw io::InputError({"--far"}, "the far plane must be beyond the near plane");
+
+  effects::RenderedFrame frame;
+  effects::FrameResources resources;
+  double frameStart = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+  double best = 1e300, sum = 0;
+  for (int k = 0; k < a.repeat; ++k) {
+    frame = effects::RenderFrame(scene, cam, ro, &resources);
+    trace.AddFrame(k, frameStart, frame);
+    frameStart += frame.totalMs;
+    best = std::min(best, frame.totalMs);
+    sum += frame.totalMs;
+  }
+
+  t0 = Clock::now();
+  if (kind == OutputKind::kPng) {
+    io::WritePng(a.output, frame.width, frame.height, a.transparent ? 4 : 3,
+                 effects::EncodeSrgb8(frame, a.transparent));
+    if (aovs != 0) io::WriteExr(SiblingAovPath(a.output), ToExr(frame, /*withColor=*/false));
+  } else {
+    io::WriteExr(a.output, ToExr(frame, /*withColor=*/true));
+  }
+  trace.AddComplete("write", "output", frameStart,
+                    std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+  if (!a.profile.empty()) trace.Write(a.profile);
+
+  if (!a.quiet) {
+    std::printf("%s: %zu atoms, %zu spheres, %zu cylinders, %zu ellipsoids -> %s (%dx%d",
+                a.molecule.c_str(), loaded.molecule.atomCount(), scene.spheres.radius.size(),
+                scene.cylinders.radius.size(), scene.ellipsoids.color.size(), a.output.c_str(),
+                frame.width, frame.height);
+    if (a.ssaa > 1) std::printf(", ssaa %d", a.ssaa);
+    std::printf(")\n");
+    std::printf("frame: %.2f ms", frame.totalMs);
+    if (a.repeat > 1) std::printf(" (best of %d: %.2f ms, mean %.2f ms)", a.repeat, best, sum / a.repeat);
+    std::printf(" [");
+    for (size_t i = 0; i < frame.passes.size(); ++i)
+      std::printf("%s%s %.2f", i ? ", " : "", frame.passes[i].name.c_str(), frame.passes[i].durationMs);
+    std::printf("]\n");
+  }
+  return 0;
+}
+
+}  // namespace softmol::cli

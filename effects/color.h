@@ -1,0 +1,23 @@
+// effects/color.h — colour encodings: sRGB 8-bit <-> linear light. Shading happens in linear
+// light (DESIGN.md); PNG output is sRGB-encoded. Both directions are table-driven, so the bits
+// never depend on a libm call inside a kernel: decoding is a 256-entry table and encoding
+// is a search in a table of the 255 decision thresholds between neighbouring 8-bit codes.
+#pragma once
+
+#include <cstdint>
+
+namespace softmol::effects {
+
+// Linear value of an sRGB-encoded 8-bit code (IEC 61966-2-1), exact to float rounding.
+float SrgbToLinear(uint8_t code);
+
+// The 8-bit sRGB code nearest to a linear value (clamped to [0,1]; NaN maps to 0).
+uint8_t LinearToSrgb8(float linear);
+
+// Linear RGB of a packed sRGB colour 0xRRGGBB.
+struct LinearRgb {
+  float r, g, b;
+};
+LinearRgb UnpackSrgb(uint32_t rgb);
+
+}  // namespace softmol::effects

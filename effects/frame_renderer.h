@@ -1,0 +1,68 @@
+// effects/frame_renderer.h — one frame from primitives to pixels: builds the pass list the
+// options call for (G-buffer with only the channels someone reads, deferred shading,
+// supersample resolve), runs it and times each pass. The CLI, the benchmarks and the golden
+// tests all render through here, so they exercise the same passes.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "effects/shading.h"
+#include "raster/camera.h"
+#include "raster/frame.h"
+#include "raster/primitives.h"
+
+namespace softmol::effects {
+
+// Arbitrary output variables besides colour (DESIGN.md defines each).
+enum Aov : uint32_t { kAovDepth = 1, kAovNormal = 2, kAovId = 4 };
+
+struct RenderOptions {
+  int ssaa = 1;                          // samples per pixel along each axis, 1..4
+  glm::vec3 background{1.0f, 1.0f, 1.0f};  // linear RGB
+  bool transparent = false;              // background alpha 0 instead of the background colour
+  bool color = true;                     // false: only the AOVs are wanted (no shading pass)
+  uint32_t aovs = 0;                     // Aov bits
+  int tileSize = 32;
+  ShadingOptions shading;
+};
+
+struct PassTiming {
+  std::string name;
+  double startMs = 0, durationMs = 0;  // from the start of the frame
+};
+
+// Output-resolution results, top row first (file order).
+struct RenderedFrame {
+  int width = 0, height = 0;
+  std::vector<float> rgba;                       // linear, premultiplied alpha, 4 floats a pixel
+  std::vector<float> depth;                      // kAovDepth: eye-space Å along the view axis, +inf background
+  std::vector<float> normalX, normalY, normalZ;  // kAovNormal: eye space, 0 on background
+  std::vector<uint32_t> id;                      // kAovId: primitive id, 0xFFFFFFFF background
+  std::vector<PassTiming> passes;                // exactly the passes that ran, in order
+  raster::FrameStats rasterStats{};
+  double totalMs = 0;
+};
+
+// Buffers kept from frame to frame (raster workspace, G-buffer, shaded samples), so a frame
+// loop (--repeat, trajectories) does not allocate. Optional.
+struct FrameResources {
+  raster::FrameWorkspace workspace;
+  raster::GBuffer gbuffer;
+  std::vector<float> rgb;
+};
+
+// The G-buffer channels the options need (what "only what the scene calls for" means here).
+uint32_t RequiredChannels(const RenderOptions& options);
+
+// Renders `scene` seen by `camera` (camera.width/height are the output size).
+RenderedFrame RenderFrame(const raster::PrimitiveScene& scene, const raster::Camera& camera,
+                          const RenderOptions& options, FrameResources* resources = nullptr);
+
+// 8-bit sRGB pixels of a frame for PNG output: RGB, or RGBA (straight alpha) when transparent.
+std::vector<uint8_t> EncodeSrgb8(const RenderedFrame& frame, bool withAlpha);
+
+}  // namespace softmol::effects

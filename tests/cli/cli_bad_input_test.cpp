@@ -1,0 +1,66 @@
+// tests/cli/cli_bad_input_test.cpp — every bad input to the command gives one clear message
+// naming the file or option, a non-zero exit, and no output file (DESIGN.md, "Bad input").
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include "tests/cli/run_command.h"
+
+namespace softmol::test {
+namespace {
+
+struct BadCase {
+  const char* name;
+  std::string args;        // appended after the scratch folder is known; %O = output path
+  const char* mustMention; // text the message must contain (the option or file)
+};
+
+class CliBadInput : public testing::TestWithParam<BadCase> {};
+
+TEST_P(CliBadInput, OneClearMessageNonZeroExitNoOutput) {
+  const BadCase& c = GetParam();
+  const auto dir = ScratchDir(std::string("bad_") + c.name);
+  const std::string outPath = (dir / "out.png").string();
+  std::string args = c.args;
+  for (size_t p; (p = args.find("%O")) != std::string::npos;) args.replace(p, 2, "'" + outPath + "'");
+  for (size_t p; (p = args.find("%D")) != std::string::npos;) args.replace(p, 2, "'" + dir.string() + "'");
+  const CommandResult r = RunSoftmol(args, dir);
+  EXPECT_NE(r.exitCode, 0) << args;
+  EXPECT_LT(r.exitCode, 128) << "crashed: " << r.err;
+  EXPECT_NE(r.err.find(c.mustMention), std::string::npos) << "stderr: " << r.err;
+  // One message: a single line, no stack of errors.
+  EXPECT_LE(std::count(r.err.begin(), r.err.end(), '\n'), 2) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(outPath)) << "output written despite the error";
+  // No temporary left behind either.
+  size_t files = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    if (e.path().filename() != "stdout.txt" && e.path().filename() != "stderr.txt") ++files;
+  EXPECT_EQ(files, 0u);
+}
+
+const std::string kPept = "'" + Data("pept.pdb") + "'";
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, CliBadInput,
+    testing::Values(
+        BadCase{"missing_file", "render %D/nope.pdb -o %O", "nope.pdb"},
+        BadCase{"directory", "render %D -o %O", "softmol_test_bad_directory"},
+        BadCase{"unknown_option", "render " + kPept + " -o %O --frobnicate", "--frobnicate"},
+        BadCase{"bad_size", "render " + kPept + " -o %O --size 10x", "--size"},
+        BadCase{"zero_size", "render " + kPept + " -o %O --size 0x100", "--size"},
+        BadCase{"huge_size", "render " + kPept + " -o %O --size 100000x100000", "--size"},
+        BadCase{"bad_style", "render " + kPept + " -o %O --style cartoon", "--style"},
+        BadCase{"bad_extension", "render " + kPept + " -o %D/out.bmpx", "-o"},
+        BadCase{"bad_background", "render " + kPept + " -o %O --background red", "--background"},
+        BadCase{"bad_camera_count", "render " + kPept + " -o %O --camera 1,2,3", "--camera"},
+        BadCase{"degenerate_camera", "render " + kPept + " -o %O --camera 0,0,0,0,0,0,0,1,0", "--camera"},
+        BadCase{"nan_rotate", "render " + kPept + " -o %O --rotate nan,0,0", "--rotate"},
+        BadCase{"bad_aov", "render " + kPept + " -o %O --aov depth,colour", "--aov"},
+        BadCase{"bad_ssaa", "render " + kPept + " -o %O --ssaa 9", "--ssaa"},
+        BadCase{"unknown_assembly", "render " + kPept + " -o %O --assembly 42", "42"},
+        BadCase{"near_beyond_far", "render " + kPept + " -o %O --near 50 --far 10", "--far"},
+        BadCase{"info_missing", "info %D/missing.cif", "missing.cif"}),
+    [](const testing::TestParamInfo<BadCase>& i) { return std::string(i.param.name); });
+
+}  // namespace
+}  // namespace softmol::test

@@ -1,0 +1,131 @@
+// tests/cli/cli_render_test.cpp — `softmol render` end to end: the image has the asked size and
+// shows the molecule on the background; the same bytes for 1 and 2 threads and from run to
+// run; EXR AOVs hold the channels DESIGN.md defines; --profile lists the passes that ran.
+#include <cmath>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "io/image_io.h"
+#include "tests/cli/run_command.h"
+
+namespace softmol::test {
+namespace {
+
+const std::string kPept = "'" + Data("pept.pdb") + "'";
+
+TEST(CliRender, PngHasSizeBackgroundAndMolecule) {
+  const auto dir = ScratchDir("render_png");
+  const std::string out = (dir / "pept.png").string();
+  const CommandResult r = RunSoftmol("render " + kPept + " -o '" + out + "' --size 160x120 --background 102030", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const io::Image8 img = io::ReadImage8(out);
+  ASSERT_EQ(img.width, 160);
+  ASSERT_EQ(img.height, 120);
+  ASSERT_EQ(img.channels, 3);
+  // Corner: background exactly; centre: the molecule (the auto-framed camera centres it).
+  EXPECT_EQ(img.pixels[0], 0x10);
+  EXPECT_EQ(img.pixels[1], 0x20);
+  EXPECT_EQ(img.pixels[2], 0x30);
+  size_t covered = 0;
+  for (size_t i = 0; i < img.pixels.size(); i += 3)
+    if (img.pixels[i] != 0x10 || img.pixels[i + 1] != 0x20 || img.pixels[i + 2] != 0x30) ++covered;
+  EXPECT_GT(covered, size_t(160 * 120) / 10);
+  EXPECT_LT(covered, size_t(160 * 120));
+}
+
+TEST(CliRender, SameBytesForOneAndTwoThreadsAndAcrossRuns) {
+  const auto dir = ScratchDir("render_threads");
+  std::string bytes[3];
+  const char* threads[3] = {"1", "2", "2"};
+  for (int k = 0; k < 3; ++k) {
+    const std::string out = (dir / ("t" + std::to_string(k) + ".png")).string();
+    const CommandResult r = RunSoftmol("render '" + Data("il2.pdb") + "' -o '" + out +
+                                           "' --size 200x150 --style balls --ssaa 2 --threads " + threads[k],
+                                       dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    bytes[k] = Slurp(out);
+    ASSERT_GT(bytes[k].size(), 1000u);
+  }
+  EXPECT_EQ(bytes[0], bytes[1]) << "1 thread and 2 threads differ";
+  EXPECT_EQ(bytes[1], bytes[2]) << "two runs differ";
+}
+
+TEST(CliRender, ExrCarriesAovChannels) {
+  const auto dir = ScratchDir("render_exr");
+  const std::string out = (dir / "pept.exr").string();
+  const CommandResult r = RunSoftmol("render " + kPept + " -o '" + out + "' --size 64x48 --aov depth,normal,id", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const io::ImageFile img = io::ReadExr(out);
+  std::vector<std::string> names;
+  for (const auto& c : img.channels) names.push_back(c.name);
+  for (const char* want : {"R", "G", "B", "A", "Z", "N.x", "N.y", "N.z", "id"})
+    EXPECT_NE(std::find(names.begin(), names.end(), want), names.end()) << want;
+  const io::ImageChannel* z = nullptr;
+  const io::ImageChannel* id = nullptr;
+  const io::ImageChannel* nz = nullptr;
+  for (const auto& c : img.channels) {
+    if (c.name == "Z") z = &c;
+    if (c.name == "id") id = &c;
+    if (c.name == "N.z") nz = &c;
+  }
+  ASSERT_TRUE(z && id && nz);
+  ASSERT_FALSE(id->ids.empty()) << "id must be a uint32 channel";
+  size_t covered = 0;
+  for (size_t i = 0; i < z->values.size(); ++i) {
+    if (id->ids[i] == 0xFFFFFFFFu) {
+      EXPECT_TRUE(std::isinf(z->values[i]) && z->values[i] > 0) << "background depth must be +inf";
+    } else {
+      ++covered;
+      EXPECT_TRUE(std::isfinite(z->values[i]) && z->values[i] > 0);
+      EXPECT_GE(nz->values[i], -1e-3f) << "a visible surface faces the viewer";
+    }
+  }
+  EXPECT_GT(covered, 0u);
+}
+
+TEST(CliRender, PngWithAovsWritesSiblingExrAndTransparentAlpha) {
+  const auto dir = ScratchDir("render_sibling");
+  const std::string out = (dir / "mol.png").string();
+  const CommandResult r = RunSoftmol("render " + kPept + " -o '" + out + "' --size 64x48 --aov depth --transparent", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(dir / "mol.aov.exr"));
+  const io::Image8 img = io::ReadImage8(out);
+  ASSERT_EQ(img.channels, 4);
+  EXPECT_EQ(img.pixels[3], 0) << "background alpha must be 0";
+}
+
+TEST(CliRender, ProfileListsFramesAndPasses) {
+  const auto dir = ScratchDir("render_profile");
+  const std::string trace = (dir / "trace.json").string();
+  const CommandResult r = RunSoftmol("render " + kPept + " -o '" + (dir / "p.png").string() +
+                                         "' --size 64x48 --repeat 3 --profile '" + trace + "'",
+                                     dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto j = nlohmann::json::parse(Slurp(trace));
+  size_t frames = 0, gbuffer = 0, shading = 0, counters = 0;
+  for (const auto& e : j["traceEvents"]) {
+    const std::string name = e["name"];
+    if (name == "frame") ++frames;
+    if (name == "gbuffer") ++gbuffer;
+    if (name == "shading") ++shading;
+    if (e["ph"] == "C") ++counters;
+  }
+  EXPECT_EQ(frames, 3u);
+  EXPECT_EQ(gbuffer, 3u);
+  EXPECT_EQ(shading, 3u);
+  EXPECT_EQ(counters, 3u);
+}
+
+TEST(CliRender, EveryStyleRenders) {
+  const auto dir = ScratchDir("render_styles");
+  for (const char* style : {"spacefill", "balls", "licorice", "ellipsoids"}) {
+    const std::string out = (dir / (std::string(style) + ".png")).string();
+    const CommandResult r = RunSoftmol("render '" + Data("1CRN.cif") + "' -o '" + out + "' --size 96x72 --style " + style, dir);
+    EXPECT_EQ(r.exitCode, 0) << style << ": " << r.err;
+    EXPECT_TRUE(std::filesystem::exists(out)) << style;
+  }
+}
+
+}  // namespace
+}  // namespace softmol::test

@@ -1,0 +1,89 @@
+// tests/cli/golden_image_test.cpp — golden images compared exactly (the determinism promise:
+// same inputs, same bytes, on every machine, thread count and SIMD target). On a mismatch the
+// test writes <name>.actual.png and <name>.diff.png (|Δ| ×16 per channel) next to the test
+// binary and prints how many pixels differ and by how much. Regenerate the goldens only on
+// purpose: SOFTMOL_UPDATE_GOLDENS=1 ctest -R Golden, then look at the images before committing.
+#include <cstdlib>
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "effects/frame_renderer.h"
+#include "io/bonds.h"
+#include "io/error.h"
+#include "io/image_io.h"
+#include "io/structure_reader.h"
+#include "raster/camera.h"
+#include "raster/representation.h"
+
+namespace softmol::test {
+namespace {
+
+struct GoldenScene {
+  const char* name;
+  const char* molecule;
+  raster::Style style;
+  int width, height, ssaa;
+  double rotateX, rotateY, orthoHeight;
+};
+
+class GoldenImage : public testing::TestWithParam<GoldenScene> {};
+
+TEST_P(GoldenImage, MatchesExactly) {
+  const GoldenScene& s = GetParam();
+  io::Molecule mol = io::ReadMolecule(std::string(SOFTMOL_DATA_DIR) + "/" + s.molecule);
+  io::ComputeDistanceBonds(mol);
+  raster::RepresentationOptions rep;
+  rep.style = s.style;
+  const raster::PrimitiveScene scene = raster::BuildRepresentation(mol, rep);
+  raster::Camera cam = raster::DefaultCamera(scene, s.width, s.height);
+  if (s.orthoHeight > 0) {
+    cam.orthographic = true;
+    cam.orthoHeight = s.orthoHeight;
+  }
+  raster::ApplyRotation(cam, {s.rotateX, s.rotateY, 0.0}, scene.Bounds().center);
+  raster::FitNearFar(cam, scene);
+  effects::RenderOptions ro;
+  ro.ssaa = s.ssaa;
+  const effects::RenderedFrame f = effects::RenderFrame(scene, cam, ro);
+  const std::vector<uint8_t> px = effects::EncodeSrgb8(f, false);
+
+  const std::filesystem::path golden = std::filesystem::path(SOFTMOL_TESTS_DIR) / "../golden" / (std::string(s.name) + ".png");
+  const char* update = std::getenv("SOFTMOL_UPDATE_GOLDENS");
+  if (update && std::string(update) == "1") {
+    io::WritePng(golden.string(), f.width, f.height, 3, px);
+    GTEST_SKIP() << "golden written: " << golden;
+  }
+  ASSERT_TRUE(std::filesystem::exists(golden)) << "no golden image " << golden
+                                               << " (SOFTMOL_UPDATE_GOLDENS=1 writes it)";
+  const io::Image8 want = io::ReadImage8(golden.string());
+  ASSERT_EQ(want.width, f.width);
+  ASSERT_EQ(want.height, f.height);
+  ASSERT_EQ(want.channels, 3);
+  size_t differing = 0;
+  int maxDelta = 0;
+  std::vector<uint8_t> diff(px.size());
+  for (size_t i = 0; i < px.size(); ++i) {
+    const int d = std::abs(int(px[i]) - int(want.pixels[i]));
+    diff[i] = uint8_t(std::min(255, d * 16));
+    maxDelta = std::max(maxDelta, d);
+    if (d != 0) ++differing;
+  }
+  if (differing != 0) {
+    io::WritePng(std::string(s.name) + ".actual.png", f.width, f.height, 3, px);
+    io::WritePng(std::string(s.name) + ".diff.png", f.width, f.height, 3, diff);
+  }
+  EXPECT_EQ(differing, 0u) << s.name << ": " << differing << " channel values differ, max |Δ| " << maxDelta
+                           << "; see " << std::filesystem::current_path() / (std::string(s.name) + ".diff.png");
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Scenes, GoldenImage,
+    testing::Values(GoldenScene{"pept_spacefill", "pept.pdb", raster::Style::kSpacefill, 160, 120, 1, 0, 0, 0},
+                    GoldenScene{"pept_balls_ssaa2", "pept.pdb", raster::Style::kBalls, 160, 120, 2, 20, 30, 0},
+                    GoldenScene{"crambin_licorice", "1CRN.cif", raster::Style::kLicorice, 160, 120, 1, 0, 90, 0},
+                    GoldenScene{"il2_ortho_spacefill", "il2.pdb", raster::Style::kSpacefill, 128, 128, 1, 45, 0, 60}),
+    [](const testing::TestParamInfo<GoldenScene>& i) { return std::string(i.param.name); });
+
+}  // namespace
+}  // namespace softmol::test

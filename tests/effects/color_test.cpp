@@ -1,0 +1,53 @@
+// tests/effects/color_test.cpp — sRGB decode/encode: every 8-bit code survives the round trip,
+// encoding is monotonic and picks the nearest code in encoded space, and NaN/negatives clamp.
+#include <cmath>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include "effects/color.h"
+
+namespace softmol::effects {
+namespace {
+
+TEST(Color, EveryCodeRoundTrips) {
+  for (int k = 0; k < 256; ++k) EXPECT_EQ(LinearToSrgb8(SrgbToLinear(uint8_t(k))), k) << k;
+}
+
+TEST(Color, DecodeMatchesTheStandardFormula) {
+  for (int k = 0; k < 256; ++k) {
+    const double v = k / 255.0;
+    const double want = v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
+    EXPECT_NEAR(SrgbToLinear(uint8_t(k)), want, 1e-7) << k;
+  }
+}
+
+TEST(Color, EncodeIsNearestCodeAndMonotonic) {
+  int previous = 0;
+  for (int i = 0; i <= 20000; ++i) {
+    const float linear = float(i) / 20000.0f;
+    const int code = LinearToSrgb8(linear);
+    EXPECT_GE(code, previous);
+    previous = code;
+    // Nearest in encoded space: the exact encoding is within half a code.
+    const double enc = linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(double(linear), 1.0 / 2.4) - 0.055;
+    EXPECT_LE(std::abs(enc * 255.0 - code), 0.5 + 1e-4) << linear;
+  }
+}
+
+TEST(Color, OutOfRangeAndNaNClamp) {
+  EXPECT_EQ(LinearToSrgb8(-1.0f), 0);
+  EXPECT_EQ(LinearToSrgb8(std::numeric_limits<float>::quiet_NaN()), 0);
+  EXPECT_EQ(LinearToSrgb8(2.0f), 255);
+  EXPECT_EQ(LinearToSrgb8(std::numeric_limits<float>::infinity()), 255);
+}
+
+TEST(Color, UnpackTakesBytesInOrder) {
+  const LinearRgb c = UnpackSrgb(0xFF8000);
+  EXPECT_EQ(c.r, 1.0f);
+  EXPECT_EQ(c.g, SrgbToLinear(0x80));
+  EXPECT_EQ(c.b, 0.0f);
+}
+
+}  // namespace
+}  // namespace softmol::effects

@@ -1,0 +1,125 @@
+// tests/effects/frame_renderer_test.cpp — the pass list runs only what the options call for,
+// the supersample resolve averages coverage and colour, AOVs come from one sample, rows are
+// flipped to file order, and no output ever holds NaN.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "effects/frame_renderer.h"
+
+namespace softmol::effects {
+namespace {
+
+raster::PrimitiveScene OneSphere(glm::dvec3 c = {0, 0, 0}, float r = 1.0f) {
+  raster::PrimitiveScene s;
+  s.spheres.Add(c, r, 0xFF0000);
+  return s;
+}
+
+raster::Camera LookDownZ(int w, int h, double distance = 6.0) {
+  raster::Camera cam;
+  cam.eye = {0, 0, distance};
+  cam.target = {0, 0, 0};
+  cam.up = {0, 1, 0};
+  cam.width = w;
+  cam.height = h;
+  return cam;
+}
+
+std::vector<std::string> PassNames(const RenderedFrame& f) {
+  std::vector<std::string> names;
+  for (const auto& p : f.passes) names.push_back(p.name);
+  return names;
+}
+
+TEST(FrameRenderer, ChannelsFollowTheOutputs) {
+  RenderOptions o;
+  o.color = false;
+  o.aovs = kAovDepth;
+  EXPECT_EQ(RequiredChannels(o), uint32_t(raster::kDepth));
+  o.aovs = kAovId;
+  EXPECT_EQ(RequiredChannels(o), uint32_t(raster::kDepth | raster::kPrimitiveId));
+  o.color = true;
+  o.aovs = 0;
+  EXPECT_EQ(RequiredChannels(o) & raster::kSurfaceCoord, 0u) << "nobody reads surface coordinates yet";
+}
+
+TEST(FrameRenderer, NoShadingPassWithoutColour) {
+  const auto scene = OneSphere();
+  raster::Camera cam = LookDownZ(32, 32);
+  raster::FitNearFar(cam, scene);
+  RenderOptions o;
+  o.color = false;
+  o.aovs = kAovDepth;
+  const RenderedFrame f = RenderFrame(scene, cam, o);
+  EXPECT_EQ(PassNames(f), (std::vector<std::string>{"gbuffer", "resolve"}));
+  EXPECT_TRUE(f.rgba.empty());
+  o.color = true;
+  EXPECT_EQ(PassNames(RenderFrame(scene, cam, o)), (std::vector<std::string>{"gbuffer", "shading", "resolve"}));
+}
+
+TEST(FrameRenderer, SupersampleResolveAveragesCoverage) {
+  const auto scene = OneSphere();
+  raster::Camera cam = LookDownZ(48, 48);
+  raster::FitNearFar(cam, scene);
+  RenderOptions o;
+  o.ssaa = 4;
+  o.transparent = true;
+  o.aovs = kAovDepth | kAovId;
+  const RenderedFrame f = RenderFrame(scene, cam, o);
+  size_t partial = 0, full = 0;
+  for (int i = 0; i < f.width * f.height; ++i) {
+    const float a = f.rgba[4 * size_t(i) + 3];
+    ASSERT_GE(a, 0.0f);
+    ASSERT_LE(a, 1.0f);
+    if (a == 1.0f) ++full;
+    else if (a > 0.0f) ++partial;
+    for (int c = 0; c < 4; ++c) ASSERT_TRUE(std::isfinite(f.rgba[4 * size_t(i) + size_t(c)]));
+    // Premultiplied: no channel exceeds alpha by more than the specular headroom.
+    if (a == 0.0f) EXPECT_EQ(f.rgba[4 * size_t(i)], 0.0f);
+  }
+  EXPECT_GT(full, 100u);
+  EXPECT_GT(partial, 20u) << "an anti-aliased silhouette has partially covered pixels";
+  // Corners are background: alpha 0, depth +inf, id none.
+  EXPECT_EQ(f.rgba[3], 0.0f);
+  EXPECT_TRUE(std::isinf(f.depth[0]));
+  EXPECT_EQ(f.id[0], raster::kNoPrimitive);
+  // Centre is the sphere, at depth distance − radius = 5.
+  const size_t centre = size_t(24) * 48 + 24;
+  EXPECT_EQ(f.id[centre], 0u);
+  EXPECT_NEAR(f.depth[centre], 5.0f, 0.02f);
+}
+
+TEST(FrameRenderer, RowsAreWrittenTopFirst) {
+  // A sphere above the view centre must appear in the upper rows of the file.
+  const auto scene = OneSphere({0, 1.2, 0}, 0.5f);
+  raster::Camera cam = LookDownZ(40, 40);
+  cam.nearPlane = 1;
+  cam.farPlane = 20;
+  RenderOptions o;
+  o.aovs = kAovId;
+  const RenderedFrame f = RenderFrame(scene, cam, o);
+  size_t top = 0, bottom = 0;
+  for (int y = 0; y < 40; ++y)
+    for (int x = 0; x < 40; ++x)
+      if (f.id[size_t(y) * 40 + size_t(x)] == 0) (y < 20 ? top : bottom)++;
+  EXPECT_GT(top, 0u);
+  EXPECT_EQ(bottom, 0u);
+}
+
+TEST(FrameRenderer, EyeInsideASphereGivesNoNaN) {
+  const auto scene = OneSphere({0, 0, 0}, 10.0f);  // the eye at z = 6 is inside
+  raster::Camera cam = LookDownZ(32, 24);
+  cam.nearPlane = 0.1;
+  cam.farPlane = 100;
+  RenderOptions o;
+  o.ssaa = 2;
+  o.aovs = kAovDepth | kAovNormal | kAovId;
+  const RenderedFrame f = RenderFrame(scene, cam, o);
+  for (float v : f.rgba) ASSERT_TRUE(std::isfinite(v));
+  for (float v : f.normalX) ASSERT_TRUE(std::isfinite(v));
+  for (float v : f.depth) ASSERT_FALSE(std::isnan(v));
+}
+
+}  // namespace
+}  // namespace softmol::effects
