@@ -182,7 +182,7 @@ int RunRender(const RenderArgs& a) {
   double frameStart = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
   double best = 1e300, sum = 0;
   for (int k = 0; k < a.repeat; ++k) {
-    frame = effects::RenderFrame(scene, cam, ro, &resources);
+    effects::RenderFrame(scene, cam, ro, frame, &resources);
     trace.AddFrame(k, frameStart, frame);
     frameStart += frame.totalMs;
     best = std::min(best, frame.totalMs);

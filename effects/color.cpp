@@ -31,6 +31,8 @@ const Tables& GetTables() {
 
 float SrgbToLinear(uint8_t code) { return GetTables().decode[code]; }
 
+const float* SrgbDecodeTable() { return GetTables().decode.data(); }
+
 uint8_t LinearToSrgb8(float linear) {
   const auto& t = GetTables().threshold;
   if (!(linear > 0.0f)) return 0;  // also NaN

@@ -14,6 +14,10 @@ float SrgbToLinear(uint8_t code);
 // The 8-bit sRGB code nearest to a linear value (clamped to [0,1]; NaN maps to 0).
 uint8_t LinearToSrgb8(float linear);
 
+// The 256-entry decode table itself (SrgbToLinear(k) == SrgbDecodeTable()[k]), for loops
+// that want to look it up without a call per channel.
+const float* SrgbDecodeTable();
+
 // Linear RGB of a packed sRGB colour 0xRRGGBB.
 struct LinearRgb {
   float r, g, b;

@@ -1,6 +1,6 @@
 // effects/frame_renderer.h — one frame from primitives to pixels: builds the pass list the
-// options call for (G-buffer with only the channels someone reads, deferred shading,
-// supersample resolve), runs it and times each pass. The CLI, the benchmarks and the golden
+// options call for (G-buffer with only the channels someone reads, deferred shading fused
+// with the supersample resolve, AOV extraction), runs it and times each pass. The CLI, the benchmarks and the golden
 // tests all render through here, so they exercise the same passes.
 #pragma once
 
@@ -52,13 +52,18 @@ struct RenderedFrame {
 struct FrameResources {
   raster::FrameWorkspace workspace;
   raster::GBuffer gbuffer;
-  std::vector<float> rgb;
 };
 
 // The G-buffer channels the options need (what "only what the scene calls for" means here).
 uint32_t RequiredChannels(const RenderOptions& options);
 
-// Renders `scene` seen by `camera` (camera.width/height are the output size).
+// Renders `scene` seen by `camera` (camera.width/height are the output size) into `frame`,
+// reusing its buffers (a frame loop passes the same one every time).
+void RenderFrame(const raster::PrimitiveScene& scene, const raster::Camera& camera,
+                 const RenderOptions& options, RenderedFrame& frame,
+                 FrameResources* resources = nullptr);
+
+// The same, into a new frame.
 RenderedFrame RenderFrame(const raster::PrimitiveScene& scene, const raster::Camera& camera,
                           const RenderOptions& options, FrameResources* resources = nullptr);
 

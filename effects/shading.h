@@ -20,11 +20,21 @@ struct ShadingOptions {
   int shininess = 32;  // integer Blinn-Phong exponent, 1..1024
 };
 
-// Writes linear RGB (3 floats a pixel, G-buffer row order) for every covered pixel of `g`;
-// needs the normal and base-colour channels. `ambientOcclusion` (one value a pixel, 1 = open)
-// scales the ambient term when given. Parallel over rows; the result does not depend on it.
-void ShadeDeferred(const raster::GBuffer& g, const ShadingOptions& options,
-                   std::span<const float> ambientOcclusion, std::span<float> rgb);
+// What the shading pass composites over.
+struct Backdrop {
+  glm::vec3 color{1.0f, 1.0f, 1.0f};  // linear RGB
+  bool transparent = false;           // alpha 0 instead of `color`
+};
+
+// The deferred shading pass fused with the supersample resolve: shades every G-buffer sample
+// (needs the normal, base-colour and id channels) and averages each ssaa×ssaa block into one
+// premultiplied linear RGBA pixel of `rgba` (4 floats a pixel, g.width/ssaa × g.height/ssaa,
+// top row first, as files store them). Fusing them means the shaded samples never go through
+// memory. `ambientOcclusion` (one value a sample, 1 = open) scales the ambient term when given.
+// Parallel over rows; the result does not depend on the thread count.
+void ShadeAndResolve(const raster::GBuffer& g, int ssaa, const ShadingOptions& options,
+                     const Backdrop& backdrop, std::span<const float> ambientOcclusion,
+                     std::span<float> rgba);
 
 // One pixel, the formula ShadeDeferred applies (the reference for tests and the GL mirror).
 glm::vec3 ShadePixel(glm::vec3 normal, glm::vec3 baseColorLinear, float ambientOcclusion,

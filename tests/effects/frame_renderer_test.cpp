@@ -44,7 +44,7 @@ TEST(FrameRenderer, ChannelsFollowTheOutputs) {
   EXPECT_EQ(RequiredChannels(o) & raster::kSurfaceCoord, 0u) << "nobody reads surface coordinates yet";
 }
 
-TEST(FrameRenderer, NoShadingPassWithoutColour) {
+TEST(FrameRenderer, OnlyTheCalledForPassesRun) {
   const auto scene = OneSphere();
   raster::Camera cam = LookDownZ(32, 32);
   raster::FitNearFar(cam, scene);
@@ -52,10 +52,11 @@ TEST(FrameRenderer, NoShadingPassWithoutColour) {
   o.color = false;
   o.aovs = kAovDepth;
   const RenderedFrame f = RenderFrame(scene, cam, o);
-  EXPECT_EQ(PassNames(f), (std::vector<std::string>{"gbuffer", "resolve"}));
+  EXPECT_EQ(PassNames(f), (std::vector<std::string>{"gbuffer", "aovs"}));
   EXPECT_TRUE(f.rgba.empty());
   o.color = true;
-  EXPECT_EQ(PassNames(RenderFrame(scene, cam, o)), (std::vector<std::string>{"gbuffer", "shading", "resolve"}));
+  o.aovs = 0;
+  EXPECT_EQ(PassNames(RenderFrame(scene, cam, o)), (std::vector<std::string>{"gbuffer", "shading"}));
 }
 
 TEST(FrameRenderer, SupersampleResolveAveragesCoverage) {

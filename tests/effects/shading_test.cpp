@@ -44,18 +44,30 @@ TEST(Shading, HighlightUsesTheIntegerExponent) {
   EXPECT_NEAR(c.x, std::pow(double(n.z), 7.0), 1e-6);
 }
 
-TEST(Shading, DeferredPassTouchesOnlyCoveredPixels) {
+TEST(Shading, ResolveShadesCoveredSamplesAndCompositesTheBackdrop) {
+  // A 2×2 G-buffer resolved with ssaa 2 into one pixel: one sample covered, facing the light.
   raster::GBuffer g;
-  g.Resize(2, 1, raster::kDepth | raster::kNormal | raster::kBaseColor | raster::kPrimitiveId);
-  g.primitiveId = {7, raster::kNoPrimitive};
-  g.normalX = {0, 0};
-  g.normalY = {0, 0};
-  g.normalZ = {1, 0};
-  g.baseColor = {0xFFFFFF, 0};
-  std::vector<float> rgb(6, -1.0f);
-  ShadeDeferred(g, ShadingOptions{}, {}, rgb);
-  EXPECT_GT(rgb[0], 0.0f);
-  EXPECT_EQ(rgb[3], -1.0f) << "background pixel was written";
+  g.Resize(2, 2, raster::kDepth | raster::kNormal | raster::kBaseColor | raster::kPrimitiveId);
+  g.primitiveId = {7, raster::kNoPrimitive, raster::kNoPrimitive, raster::kNoPrimitive};
+  g.normalX = {0, 0, 0, 0};
+  g.normalY = {0, 0, 0, 0};
+  g.normalZ = {1, 0, 0, 0};
+  g.baseColor = {0xFFFFFF, 0, 0, 0};
+  ShadingOptions o;
+  glm::vec3 l, h;
+  LightVectors(o, l, h);
+  const glm::vec3 lit = ShadePixel({0, 0, 1}, {1, 1, 1}, 1.0f, l, h, o);
+  std::vector<float> rgba(4, -1.0f);
+  ShadeAndResolve(g, 2, o, Backdrop{{0.5f, 0.5f, 0.5f}, false}, {}, rgba);
+  EXPECT_FLOAT_EQ(rgba[0], (lit.x + 0.5f + 0.5f + 0.5f) * 0.25f);
+  EXPECT_FLOAT_EQ(rgba[3], 1.0f);
+  ShadeAndResolve(g, 2, o, Backdrop{{0.5f, 0.5f, 0.5f}, true}, {}, rgba);
+  EXPECT_FLOAT_EQ(rgba[0], lit.x * 0.25f) << "premultiplied, transparent backdrop adds nothing";
+  EXPECT_FLOAT_EQ(rgba[3], 0.25f);
+  // Occlusion scales the ambient term only.
+  const std::vector<float> ao = {0.0f, 1.0f, 1.0f, 1.0f};
+  ShadeAndResolve(g, 2, o, Backdrop{{0, 0, 0}, true}, ao, rgba);
+  EXPECT_FLOAT_EQ(rgba[0], ShadePixel({0, 0, 1}, {1, 1, 1}, 0.0f, l, h, o).x * 0.25f);
 }
 
 }  // namespace
