@@ -21,11 +21,7 @@ std::unique_ptr<TrajectoryReader> OpenCifModels(const std::string& path, size_t 
 
 // A location naming a file and, optionally, a frame ("frame 17") or a line.
 inline SourceLocation FileLoc(const std::string& path, std::string detail = {}, long line = 0) {
-  SourceLocation loc;
-  loc.file = path;
-  loc.line = line;
-  loc.detail = std::move(detail);
-  return loc;
+  return SourceLocation(path, line, 0, std::move(detail));
 }
 
 // "frame 17" (0-based, as TrajectoryFrame::index).
