@@ -1,0 +1,43 @@
+// raster/camera.h — the view: eye, target, up, and an OpenGL projection (perspective with a
+// vertical field of view, or orthographic). Eye space looks down −Z, window pixel centres are
+// at (x + 0.5, y + 0.5) with y up (DESIGN.md). Near/far of 0 mean "fitted to the scene".
+#pragma once
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+#include "raster/primitives.h"
+
+namespace softmol::raster {
+
+struct Camera {
+  glm::dvec3 eye{0.0, 0.0, 10.0}, target{0.0}, up{0.0, 1.0, 0.0};
+  double fovYDegrees = 30.0;  // perspective only
+  bool orthographic = false;
+  double orthoHeight = 0.0;                // view height in Å (orthographic only)
+  double nearPlane = 0.0, farPlane = 0.0;  // eye-space distances along −Z; 0 = fitted
+  int width = 0, height = 0;               // pixels
+};
+
+// DESIGN.md auto-framing: 30° vertical FOV, looking along −Z at the bounding-sphere centre,
+// at the distance where the sphere fits the smaller image dimension with a 5% margin.
+Camera DefaultCamera(const PrimitiveScene& scene, int width, int height);
+
+// Rotates the eye (and up) about `center` by X, then Y, then Z degrees in the camera's own
+// frame (so "--rotate 0,90,0" turns the molecule to show its side).
+void ApplyRotation(Camera& camera, glm::dvec3 degreesXYZ, glm::dvec3 center);
+// factor > 1 brings the view closer (perspective: eye moves toward target; ortho: height / f).
+void ApplyZoom(Camera& camera, double factor);
+// Sets nearPlane/farPlane to enclose the scene's bounding sphere (kept ≥ 1e-4 × far).
+void FitNearFar(Camera& camera, const PrimitiveScene& scene);
+
+// OpenGL matrices (gluLookAt / gluPerspective / glOrtho) for the GL mirror and for tests.
+glm::dmat4 ViewMatrix(const Camera& camera);
+glm::dmat4 ProjectionMatrix(const Camera& camera);  // needs nearPlane, farPlane > 0
+
+// Ray through the pixel centre (x + 0.5, y + 0.5), eye space: perspective rays start at the
+// eye with direction (u, v, −1); orthographic rays start at (u, v, 0) with direction (0,0,−1).
+// pixelScale is tan-space units (perspective) or Å (orthographic) per pixel.
+double PixelScale(const Camera& camera);
+
+}  // namespace softmol::raster

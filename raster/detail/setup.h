@@ -1,0 +1,54 @@
+// raster/detail/setup.h — per-frame setup (camera-relative eye-space constants, tight screen
+// boxes, Sigg et al. 2006 eq. 3-5, frustum culling), front-to-back ordering and binning.
+// Internal; exposed for tests (bounding-box tightness) and the frame driver.
+#pragma once
+
+#include <cstdint>
+#include <glm/vec3.hpp>
+#include <vector>
+
+#include "raster/camera.h"
+#include "raster/detail/tile.h"
+#include "raster/primitives.h"
+
+namespace softmol::raster::detail {
+
+// The camera reduced to what setup needs, in double: eye-space basis and ray scales.
+struct ViewSetup {
+  glm::dvec3 eye, right, up, back;  // eye space: x = right, y = up, z = back (looks down −z)
+  double pixelScale = 0, invPixelScale = 0, halfWidth = 0, halfHeight = 0, nearPlane = 0,
+         farPlane = 0;
+  int width = 0, height = 0;
+  bool ortho = false;
+  glm::dvec3 ToEye(double x, double y, double z) const;  // camera-relative, double
+};
+
+// Near/far are the camera's, or fitted to the scene when either is 0.
+ViewSetup MakeViewSetup(const Camera& camera, const PrimitiveScene& scene);
+FrameConstants MakeFrameConstants(const ViewSetup& view, uint32_t channels);
+
+// Tight interval of ray parameters u (x-axis) covered by a quadric with eye-space centre c
+// and S = A·Aᵀ (A = semi-axis columns; r²·I for a sphere, r²(I − wwᵀ) for a cylinder's end
+// disc): the tangent-plane condition of eq. 4-5 for the planes x + u·z = 0 through the eye.
+// `axis` 0 gives x bounds, 1 gives y bounds. Returns false when the quadric reaches the eye
+// plane (the projected conic is not an ellipse): callers then use the whole screen.
+bool TangentBounds(bool ortho, const glm::dvec3& c, const double S[3][3], int axis, double& lo,
+                   double& hi);
+
+// Sets up every primitive; returns the number culled. Culled primitives get an empty box.
+struct SetupOutput {
+  std::vector<SpherePrim> spheres;
+  std::vector<CylinderPrim> cylinders;
+  std::vector<EllipsoidPrim> ellipsoids;
+  // Sort keys: bits of zMin (non-negative float, so integer order = float order), or
+  // kCulledKey for a culled primitive.
+  std::vector<uint32_t> sphereKey, cylinderKey, ellipsoidKey;
+  // What binning needs of each primitive (code, zMin, box), written by setup so that
+  // sorting and binning never touch the full primitive constants.
+  std::vector<BinEntry> sphereEntry, cylinderEntry, ellipsoidEntry;
+};
+// `surfaceFrame`: also build the cylinders' angular frames (only kSurfaceCoord reads them).
+uint64_t SetupPrimitives(const PrimitiveScene& scene, const ViewSetup& view, SetupOutput& out,
+                         bool surfaceFrame = true);
+
+}  // namespace softmol::raster::detail

@@ -1,0 +1,38 @@
+// raster/gbuffer.h — the geometry buffer the fragment kernels write: full-frame planes, row 0
+// at the bottom (window coordinates, y up), index y·width + x. Only the requested channels
+// are allocated and written; depth is always kept because the depth test needs it.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace softmol::raster {
+
+enum GBufferChannel : uint32_t {
+  kDepth = 1,        // eye-space distance along the view axis, Å; +inf on background
+  kNormal = 2,       // eye-space unit normal (outward); 0 on background
+  kBaseColor = 4,    // sRGB 0xRRGGBB; 0 on background
+  kPrimitiveId = 8,  // id of the visible primitive; kNoPrimitive on background
+  // Spheres: world-space unit normal (u,v,w). Cylinders: u = axial position in [0,1] from
+  // end 0, (v,w) = normal in the cylinder's own world-space frame (cos, sin of the angle).
+  kSurfaceCoord = 16,
+};
+inline constexpr uint32_t kNoPrimitive = 0xFFFFFFFFu;
+
+struct GBuffer {
+  int width = 0, height = 0;
+  uint32_t channels = 0;
+  std::vector<float> depth;
+  std::vector<float> normalX, normalY, normalZ;
+  std::vector<uint32_t> baseColor;
+  std::vector<uint32_t> primitiveId;
+  std::vector<float> surfaceU, surfaceV, surfaceW;
+
+  // Sizes the planes of `channels` (| kDepth) and frees the others; keeps capacity when
+  // called again with the same size, so a frame loop does not allocate.
+  void Resize(int w, int h, uint32_t channels);
+  size_t Index(int x, int y) const { return size_t(y) * size_t(width) + size_t(x); }
+};
+
+}  // namespace softmol::raster

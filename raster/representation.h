@@ -1,0 +1,34 @@
+// raster/representation.h — turns a molecule into quadric primitives: spacefill (van der
+// Waals spheres), balls (ball-and-stick: scaled spheres + bond cylinders coloured half and
+// half), licorice (sticks with joint spheres of the same radius) and thermal ellipsoids
+// (ANISOU at a given probability; atoms without one get an isotropic sphere).
+#pragma once
+
+#include <array>
+
+#include "io/molecule.h"
+#include "raster/primitives.h"
+
+namespace softmol::raster {
+
+enum class Style { kSpacefill, kBalls, kLicorice, kEllipsoids };
+
+struct RepresentationOptions {
+  Style style = Style::kSpacefill;
+  float ballScale = 0.25f;  // balls: sphere radius = ballScale × vdW (PyMOL sphere_scale 0.25)
+  float bondRadius = 0.2f;  // balls and ellipsoids: bond cylinder radius, Å
+  float licoriceRadius = 0.25f;       // licorice: stick and joint radius, Å (PyMOL stick_radius)
+  float ellipsoidProbability = 0.5f;  // ellipsoids: probability contour (0.5 → c = 1.5382)
+};
+
+PrimitiveScene BuildRepresentation(const io::Molecule& molecule,
+                                   const RepresentationOptions& options);
+
+// Scale c of the probability ellipsoid: P(χ²₃ ≤ c²) = p (c = 1.5382 for p = 0.5).
+double EllipsoidScale(double probability);
+
+// Eigen-decomposition of a symmetric 3×3 matrix (cyclic Jacobi, double): values ascending,
+// vectors as columns (vectors[col][row]).
+void SymmetricEigen3(const double m[3][3], double values[3], double vectors[3][3]);
+
+}  // namespace softmol::raster

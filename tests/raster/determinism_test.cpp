@@ -1,0 +1,99 @@
+// tests/raster/determinism_test.cpp — the same bytes for 1 and 2 threads, for repeated runs,
+// for tile sizes 16/32/64 (tiling must not change pixels), and for every SIMD target this
+// build and CPU support (hwy::SetSupportedTargetsForTest), with a reused workspace.
+#include <gtest/gtest.h>
+#include <hwy/targets.h>
+#include <tbb/global_control.h>
+#include <tbb/task_arena.h>
+
+#include <cstring>
+#include <vector>
+
+#include "raster/frame.h"
+#include "tests/support/scenes.h"
+
+namespace softmol::raster {
+namespace {
+
+std::vector<uint8_t> Bytes(const GBuffer& g) {
+  std::vector<uint8_t> b;
+  auto add = [&](const auto& v) {
+    const size_t n = v.size() * sizeof(v[0]);
+    const size_t o = b.size();
+    b.resize(o + n);
+    if (n) std::memcpy(b.data() + o, v.data(), n);
+  };
+  add(g.depth), add(g.normalX), add(g.normalY), add(g.normalZ), add(g.baseColor);
+  add(g.primitiveId), add(g.surfaceU), add(g.surfaceV), add(g.surfaceW);
+  return b;
+}
+
+std::vector<uint8_t> Render(const test::NamedScene& s, int threads, int tileSize,
+                            FrameWorkspace* ws = nullptr) {
+  GBuffer g;
+  FrameOptions opt;
+  opt.tileSize = tileSize;
+  opt.channels = kDepth | kNormal | kBaseColor | kPrimitiveId | kSurfaceCoord;
+  tbb::task_arena arena(threads);
+  arena.execute([&] { RenderGBuffer(s.scene, s.camera, opt, g, ws); });
+  return Bytes(g);
+}
+
+std::vector<test::NamedScene> Scenes() {
+  std::vector<test::NamedScene> s;
+  s.push_back(test::RandomBallsAndSticks(5, 3000, 320, 200, false));
+  s.push_back(test::RandomBallsAndSticks(6, 3000, 320, 200, true));
+  for (auto& a : test::AdversarialScenes()) s.push_back(std::move(a));
+  return s;
+}
+
+TEST(RasterDeterminism, ThreadsRunsAndTileSizes) {
+  for (const auto& s : Scenes()) {
+    SCOPED_TRACE(s.name);
+    const std::vector<uint8_t> ref = Render(s, 1, 32);
+    EXPECT_EQ(ref, Render(s, 2, 32));
+    EXPECT_EQ(ref, Render(s, 2, 16));
+    EXPECT_EQ(ref, Render(s, 2, 8));
+    EXPECT_EQ(ref, Render(s, 2, 64));
+    FrameWorkspace ws;
+    EXPECT_EQ(ref, Render(s, 2, 32, &ws));
+    EXPECT_EQ(ref, Render(s, 2, 32, &ws));  // reused buffers
+  }
+}
+
+TEST(RasterDeterminism, EverySimdTargetGivesTheSameBytes) {
+  const std::vector<test::NamedScene> scenes = Scenes();
+  std::vector<std::vector<uint8_t>> ref;
+  for (const auto& s : scenes) ref.push_back(Render(s, 2, 32));
+  int targets = 0;
+  for (const uint32_t target : hwy::SupportedAndGeneratedTargets()) {
+    hwy::SetSupportedTargetsForTest(target);
+    ++targets;
+    for (size_t i = 0; i < scenes.size(); ++i)
+      EXPECT_EQ(ref[i], Render(scenes[i], 2, 32))
+          << hwy::TargetName(target) << " " << scenes[i].name;
+  }
+  hwy::SetSupportedTargetsForTest(0);
+  EXPECT_GE(targets, 2) << "expected the scalar/baseline target and at least one more";
+}
+
+TEST(RasterDeterminism, OnlyRequestedChannelsAreProducedAndTheyDoNotChange) {
+  const test::NamedScene s = test::RandomBallsAndSticks(8, 500, 200, 150, false);
+  GBuffer full, some;
+  FrameOptions opt;
+  opt.channels = kDepth | kNormal | kBaseColor | kPrimitiveId | kSurfaceCoord;
+  RenderGBuffer(s.scene, s.camera, opt, full);
+  opt.channels = kPrimitiveId;  // depth comes anyway: the depth test needs it
+  RenderGBuffer(s.scene, s.camera, opt, some);
+  EXPECT_TRUE(some.normalX.empty() && some.baseColor.empty() && some.surfaceU.empty());
+  EXPECT_EQ(some.channels, kDepth | kPrimitiveId);
+  ASSERT_EQ(some.depth.size(), full.depth.size());
+  EXPECT_EQ(0, std::memcmp(some.depth.data(), full.depth.data(), 4 * full.depth.size()));
+  EXPECT_EQ(some.primitiveId, full.primitiveId);
+  size_t covered = 0;
+  for (uint32_t id : some.primitiveId) covered += id != kNoPrimitive ? 1 : 0;
+  EXPECT_GT(covered, 1000u);
+}
+
+}  // namespace
+}  // namespace softmol::raster

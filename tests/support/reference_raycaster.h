@@ -1,0 +1,31 @@
+// tests/support/reference_raycaster.h — double-precision reference for the rasterizer: casts
+// the ray of every pixel centre against every primitive (brute force, no boxes, no tiles) and
+// keeps the nearest hit in [near, far]. Per pixel it also says whether the float kernels may
+// legitimately disagree: a primitive whose discriminant, axial coordinate or depth is within
+// the float kernels' rounding bound of a coverage boundary, or two hits tied in depth.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "raster/camera.h"
+#include "raster/primitives.h"
+
+namespace softmol::test {
+
+struct ReferenceImage {
+  int width = 0, height = 0;
+  std::vector<double> depth;       // +inf on background
+  std::vector<double> depthTol;    // allowed |float depth − depth| where covered
+  std::vector<uint32_t> id;        // 0xFFFFFFFF on background
+  std::vector<double> normal;      // 3 per pixel, eye space
+  std::vector<uint8_t> ambiguous;  // 1: coverage/id may differ from the float kernels
+  size_t Index(int x, int y) const { return size_t(y) * size_t(width) + size_t(x); }
+};
+
+// Relative depth tolerance away from silhouettes (float kernel vs double reference).
+inline constexpr double kDepthRelTol = 1e-5;
+
+ReferenceImage RayCastReference(const raster::PrimitiveScene& scene, const raster::Camera& cam);
+
+}  // namespace softmol::test
