@@ -18,16 +18,6 @@
 namespace softmol::io {
 namespace {
 
-// A fully initialised SourceLocation (aggregate braces would leave fields to -Wextra).
-SourceLocation Loc(std::string file, long line = 0, int column = 0, std::string detail = {}) {
-  SourceLocation where;
-  where.file = std::move(file);
-  where.line = line;
-  where.column = column;
-  where.detail = std::move(detail);
-  return where;
-}
-
 using Kind = Selection::Kind;
 
 struct Token {
@@ -114,7 +104,7 @@ class Parser {
 
  private:
   [[noreturn]] void Fail(int column, const std::string& message) const {
-    throw InputError(Loc("selection", 1, column), message);
+    throw InputError(SourceLocation("selection", 1, column), message);
   }
   bool AtEnd() const { return pos_ >= tokens_.size(); }
   std::string PeekUpper() const { return AtEnd() ? std::string() : Upper(tokens_[pos_].text); }

@@ -39,16 +39,6 @@
 namespace softmol::io {
 namespace {
 
-// A fully initialised SourceLocation (aggregate braces would leave fields to -Wextra).
-SourceLocation Loc(std::string file, long line = 0, int column = 0, std::string detail = {}) {
-  SourceLocation where;
-  where.file = std::move(file);
-  where.line = line;
-  where.column = column;
-  where.detail = std::move(detail);
-  return where;
-}
-
 // ---------------------------------------------------------------------------------------
 // Bytes in: plain or gzip, from disk or memory.
 
@@ -66,7 +56,7 @@ std::string Gunzip(std::string_view bytes, const std::string& name) {
   z_stream zs{};
   // 15 + 16: gzip wrapper only (we only come here after seeing the gzip magic bytes).
   if (inflateInit2(&zs, 15 + 16) != Z_OK)
-    throw InputError(Loc(name), "cannot initialise the gzip decoder");
+    throw InputError(SourceLocation(name), "cannot initialise the gzip decoder");
   zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(bytes.data()));
   zs.avail_in = static_cast<uInt>(bytes.size());
   std::vector<char> chunk(1 << 16);
@@ -78,7 +68,7 @@ std::string Gunzip(std::string_view bytes, const std::string& name) {
     out.append(chunk.data(), chunk.size() - zs.avail_out);
     if (out.size() > kMaxInflated) {
       inflateEnd(&zs);
-      throw InputError(Loc(name), "gzip data inflates to more than 4 GiB");
+      throw InputError(SourceLocation(name), "gzip data inflates to more than 4 GiB");
     }
     if (rc == Z_STREAM_END) {
       if (zs.avail_in == 0) break;
@@ -95,9 +85,9 @@ std::string Gunzip(std::string_view bytes, const std::string& name) {
   inflateEnd(&zs);
   if (rc != Z_STREAM_END) {
     if (rc == Z_OK || rc == Z_BUF_ERROR)
-      throw InputError(Loc(name), "gzip data is truncated (the file ends before the "
+      throw InputError(SourceLocation(name), "gzip data is truncated (the file ends before the "
                                "compressed stream does)");
-    throw InputError(Loc(name), "gzip data is corrupt" + (message.empty() ? "" : ": " + message));
+    throw InputError(SourceLocation(name), "gzip data is corrupt" + (message.empty() ? "" : ": " + message));
   }
   return out;
 }
@@ -107,16 +97,16 @@ std::string ReadFileBytes(const std::string& path) {
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
   if (ec || !fs::exists(status))
-    throw InputError(Loc(path), "cannot open file: no such file or directory");
+    throw InputError(SourceLocation(path), "cannot open file: no such file or directory");
   if (fs::is_directory(status))
-    throw InputError(Loc(path), "is a directory, not a PDB or mmCIF file");
+    throw InputError(SourceLocation(path), "is a directory, not a PDB or mmCIF file");
   // A FIFO or a device (/dev/zero) could block or never end: only regular files are read.
   if (!fs::is_regular_file(status))
-    throw InputError(Loc(path), "is not a regular file");
+    throw InputError(SourceLocation(path), "is not a regular file");
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(Loc(path), std::string("cannot open file: ") + std::strerror(errno));
+  if (!in) throw InputError(SourceLocation(path), std::string("cannot open file: ") + std::strerror(errno));
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw InputError(Loc(path), "read error");
+  if (in.bad()) throw InputError(SourceLocation(path), "read error");
   return bytes;
 }
 
@@ -132,7 +122,7 @@ std::string_view TrimView(std::string_view s) {
 // PDB and mmCIF are text: a NUL or a control character other than tab/CR/LF/FF/VT means the
 // file is something else (an image, a compressed file under the wrong name, a DCD...).
 void CheckIsText(std::string_view text, const std::string& name) {
-  if (TrimView(text).empty()) throw InputError(Loc(name), "file is empty");
+  if (TrimView(text).empty()) throw InputError(SourceLocation(name), "file is empty");
   long line = 1;
   for (const char ch : text) {
     const auto c = static_cast<unsigned char>(ch);
@@ -141,7 +131,7 @@ void CheckIsText(std::string_view text, const std::string& name) {
     } else if (c < 0x20 && c != '\t' && c != '\r' && c != '\f' && c != '\v') {
       char hex[8];
       std::snprintf(hex, sizeof hex, "0x%02X", c);
-      throw InputError(Loc(name, line), std::string("binary data (byte ") + hex +
+      throw InputError(SourceLocation(name, line), std::string("binary data (byte ") + hex +
                                          "): not a PDB or mmCIF text file");
     }
   }
@@ -187,10 +177,10 @@ InputError FromGemmiPdb(const std::string& name, const std::string& message) {
     if (line > 0 && end[0] == ':') {
       const char* rest = end + 1;
       while (*rest == ' ') ++rest;
-      return InputError(Loc(name, line), rest);
+      return InputError(SourceLocation(name, line), rest);
     }
   }
-  return InputError(Loc(name), message);
+  return InputError(SourceLocation(name), message);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -215,16 +205,16 @@ void ParseCoordinate(std::string_view line, size_t begin, const char* axis,
   const std::string text(TrimView(field));
   const int column = static_cast<int>(begin + lead + 1);
   if (text.empty())
-    throw InputError(Loc(name, lineNumber, static_cast<int>(begin + 1)),
+    throw InputError(SourceLocation(name, lineNumber, static_cast<int>(begin + 1)),
                      std::string(axis) + " coordinate is missing (columns " +
                          std::to_string(begin + 1) + "-" + std::to_string(begin + 8) + ")");
   char* end = nullptr;
   const double value = std::strtod(text.c_str(), &end);
   if (end != text.c_str() + text.size())
-    throw InputError(Loc(name, lineNumber, column),
+    throw InputError(SourceLocation(name, lineNumber, column),
                      std::string(axis) + " coordinate is not a number: '" + text + "'");
   if (!std::isfinite(value))
-    throw InputError(Loc(name, lineNumber, column),
+    throw InputError(SourceLocation(name, lineNumber, column),
                      std::string(axis) + " coordinate is not finite: '" + text + "'");
 }
 
@@ -242,7 +232,7 @@ PdbScan ScanPdb(std::string_view text, const std::string& name) {
     if (line.size() > 120) line = line.substr(0, 120);  // gemmi reads at most 120 columns
     if (RecordIs(line, "ATOM") || RecordIs(line, "HETA")) {
       if (line.size() < 54)
-        throw InputError(Loc(name, lineNumber),
+        throw InputError(SourceLocation(name, lineNumber),
                          "ATOM/HETATM record is too short (" + std::to_string(line.size()) +
                              " columns; the coordinates are in columns 31-54): truncated?");
       ParseCoordinate(line, 30, "x", name, lineNumber);
@@ -250,7 +240,7 @@ PdbScan ScanPdb(std::string_view text, const std::string& name) {
       ParseCoordinate(line, 46, "z", name, lineNumber);
     } else if (RecordIs(line, "ANIS")) {
       if (line.size() < 70)
-        throw InputError(Loc(name, lineNumber),
+        throw InputError(SourceLocation(name, lineNumber),
                          "ANISOU record is too short (" + std::to_string(line.size()) +
                              " columns; the tensor is in columns 29-70): truncated?");
     } else if (RecordIs(line, "CONE")) {
@@ -264,7 +254,7 @@ PdbScan ScanPdb(std::string_view text, const std::string& name) {
         char* endp = nullptr;
         const long serial = std::strtol(value.c_str(), &endp, 10);
         if (endp != value.c_str() + value.size() || serial <= 0)
-          throw InputError(Loc(name, lineNumber, static_cast<int>(begin + 1)),
+          throw InputError(SourceLocation(name, lineNumber, static_cast<int>(begin + 1)),
                            "CONECT atom serial is not a positive number: '" + value + "'");
         if (field == 0)
           from = static_cast<uint32_t>(serial);
@@ -432,7 +422,7 @@ std::string Describe(const Molecule& mol, size_t atom) {
 void CheckFinite(const Molecule& mol, const std::string& name) {
   for (size_t i = 0; i < mol.atomCount(); ++i)
     if (!std::isfinite(mol.x[i]) || !std::isfinite(mol.y[i]) || !std::isfinite(mol.z[i]))
-      throw InputError(Loc(name, 0, 0, Describe(mol, i)),
+      throw InputError(SourceLocation(name, 0, 0, Describe(mol, i)),
                        "coordinate is not a finite number (not a number, NaN or Inf)");
 }
 
@@ -561,11 +551,11 @@ Molecule BuildAssembly(const Molecule& au, const ReadState& state,
   // (thousands of operators on a large unit) is refused rather than exhausting memory.
   constexpr size_t kMaxAtoms = size_t(1) << 31;
   if (total >= kMaxAtoms)
-    throw InputError(Loc(name), "assembly '" + assembly.name + "' would have " +
+    throw InputError(SourceLocation(name), "assembly '" + assembly.name + "' would have " +
                                     std::to_string(total) + " atoms, more than " +
                                     std::to_string(kMaxAtoms));
   if (total == 0)
-    throw InputError(Loc(name), "assembly '" + assembly.name + "' selects no atoms (its chains "
+    throw InputError(SourceLocation(name), "assembly '" + assembly.name + "' selects no atoms (its chains "
                                                              "are not in the file)");
 
   Molecule out;
@@ -677,15 +667,15 @@ Molecule ReadMoleculeFromMemory(std::string_view bytes, const std::string& name,
   UnknownElements unknown;
   const size_t models = options.allModels ? st.models.size() : std::min<size_t>(1, st.models.size());
   if (models > 65536)
-    throw InputError(Loc(name), "too many models (" + std::to_string(models) + "; at most 65536)");
+    throw InputError(SourceLocation(name), "too many models (" + std::to_string(models) + "; at most 65536)");
   for (size_t m = 0; m < models; ++m)
     AppendModel(st.models[m], static_cast<uint16_t>(m), mol, state, unknown);
   FlagIons(mol);
   if (mol.atomCount() == 0)
-    throw InputError(Loc(name), "no atoms: the file has no ATOM/HETATM records (or _atom_site "
+    throw InputError(SourceLocation(name), "no atoms: the file has no ATOM/HETATM records (or _atom_site "
                              "rows)");
   if (mol.atomCount() >= UINT32_MAX / 2)
-    throw InputError(Loc(name), "too many atoms (" + std::to_string(mol.atomCount()) + ")");
+    throw InputError(SourceLocation(name), "too many atoms (" + std::to_string(mol.atomCount()) + ")");
   CheckFinite(mol, name);
   if (unknown.count > 0)
     std::fprintf(stderr,
@@ -700,7 +690,7 @@ Molecule ReadMoleculeFromMemory(std::string_view bytes, const std::string& name,
     for (const gemmi::Assembly& a : st.assemblies)
       if (a.name == options.assembly) found = &a;
     if (!found)
-      throw InputError(Loc(name), "unknown assembly '" + options.assembly + "'; " +
+      throw InputError(SourceLocation(name), "unknown assembly '" + options.assembly + "'; " +
                                    (mol.assemblyIds.empty()
                                         ? std::string("the file defines no assemblies")
                                         : "available: " + ListIds(mol.assemblyIds)));

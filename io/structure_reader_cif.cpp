@@ -13,13 +13,6 @@
 namespace softmol::io::detail {
 namespace {
 
-SourceLocation Loc(const std::string& file, long line = 0) {
-  SourceLocation where;
-  where.file = file;
-  where.line = line;
-  return where;
-}
-
 // gemmi's CIF messages start with "name:line:column: "; keep the line, drop the prefix so
 // the file is not named twice.
 InputError FromGemmi(const std::string& name, const std::string& message) {
@@ -39,7 +32,7 @@ InputError FromGemmi(const std::string& name, const std::string& message) {
     if (end != rest.c_str() && *end == ':' && column >= 0) rest.erase(0, size_t(end - rest.c_str()) + 1);
     while (!rest.empty() && rest[0] == ' ') rest.erase(0, 1);
   }
-  return InputError(Loc(name, line), rest);
+  return InputError(SourceLocation(name, line), rest);
 }
 
 }  // namespace
@@ -48,11 +41,11 @@ gemmi::Structure ParseMmcif(std::string_view text, const std::string& name) {
   try {
     const gemmi::cif::Document doc = gemmi::cif::read_memory(text.data(), text.size(),
                                                              name.c_str());
-    if (doc.blocks.empty()) throw InputError(Loc(name), "no data block: not an mmCIF file");
+    if (doc.blocks.empty()) throw InputError(SourceLocation(name), "no data block: not an mmCIF file");
     gemmi::Structure st = gemmi::make_structure(doc);
     // gemmi skips an _atom_site table that lacks a column it needs; say which ones.
     if (st.models.empty() && doc.blocks[0].has_tag("_atom_site.Cartn_x"))
-      throw InputError(Loc(name),
+      throw InputError(SourceLocation(name),
                        "_atom_site lacks a required column (id, type_symbol, label_alt_id, "
                        "label_asym_id, Cartn_x, Cartn_y, Cartn_z, occupancy, "
                        "B_iso_or_equiv, auth_seq_id)");
