@@ -14,6 +14,8 @@ struct BadCase {
   std::string args;        // appended after the scratch folder is known; %O = output path
   const char* mustMention; // text the message must contain (the option or file)
 };
+// ctest names the test by this (instead of the struct's bytes).
+void PrintTo(const BadCase& c, std::ostream* os) { *os << c.name; }
 
 class CliBadInput : public testing::TestWithParam<BadCase> {};
 

@@ -57,5 +57,22 @@ TEST(CliInfo, TextMentionsEveryField) {
     EXPECT_NE(r.out.find(field), std::string::npos) << field << " missing in:\n" << r.out;
 }
 
+TEST(CliInfo, SelectionCountsAtomsAndRejectsEmptyOrBadSelections) {
+  const auto dir = ScratchDir("info_select");
+  // 3sn6 has one ligand (HETATM, not water or ion): count it, and count chain A's atoms.
+  CommandResult r = RunSoftmol("info '" + Data("3sn6.pdb") + "' --select ligand --json", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  auto j = nlohmann::json::parse(r.out);
+  EXPECT_GT(j["selection"]["atoms"].get<size_t>(), 0u);
+  EXPECT_LT(j["selection"]["atoms"].get<size_t>(), j["atoms"].get<size_t>());
+  r = RunSoftmol("info '" + Data("3sn6.pdb") + "' --select 'resn NOPE'", dir);
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("--select"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("matches no atoms"), std::string::npos) << r.err;
+  r = RunSoftmol("info '" + Data("3sn6.pdb") + "' --select 'resi x'", dir);
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("selection:1:"), std::string::npos) << "the error points at the column: " << r.err;
+}
+
 }  // namespace
 }  // namespace softmol::test

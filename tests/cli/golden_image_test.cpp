@@ -26,6 +26,8 @@ struct GoldenScene {
   int width, height, ssaa;
   double rotateX, rotateY, orthoHeight;
 };
+// ctest names the test by this (instead of the struct's bytes).
+void PrintTo(const GoldenScene& s, std::ostream* os) { *os << s.name; }
 
 class GoldenImage : public testing::TestWithParam<GoldenScene> {};
 
