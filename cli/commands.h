@@ -14,6 +14,7 @@ struct InfoArgs {
   std::string molecule;
   std::string assembly;
   std::string trajectory;
+  std::string select;  // a selection to count (io/selection.h)
   bool json = false;
   int threads = 0;
 };
@@ -31,6 +32,7 @@ struct RenderArgs {
   std::string background = "ffffff";
   std::string aov;          // depth,normal,id
   std::string profile;      // Chrome trace-event JSON
+  std::string backend = "cpu";  // cpu | gl (the OpenGL mirror; builds with SOFTMOL_BUILD_GL)
   double fov = 30.0;
   double ortho = 0.0;
   double zoom = 1.0;
