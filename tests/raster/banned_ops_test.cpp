@@ -55,9 +55,10 @@ TEST_P(BannedOps, KernelsUseOnlyDeterministicOps) {
 }
 
 // raster: tile_kernel-inl.h, tile_kernel.cpp, setup_kernel.cpp; effects: shading_kernel-inl.h
-// and shading_kernel.cpp.
+// and shading_kernel.cpp; ao: surface_maps, patch_atlas and cone_trace, each -inl.h + .cpp.
 INSTANTIATE_TEST_SUITE_P(Modules, BannedOps,
-                         testing::Values(KernelFolder{"raster", 3}, KernelFolder{"effects", 2}),
+                         testing::Values(KernelFolder{"raster", 3}, KernelFolder{"effects", 2},
+                                         KernelFolder{"ao", 6}),
                          [](const testing::TestParamInfo<KernelFolder>& i) { return std::string(i.param.name); });
 
 }  // namespace

@@ -1,0 +1,352 @@
+// ao/occupancy_pyramid.cpp — filling the occupancy pyramid (Hermosilla et al. 2015, §4).
+//
+// Finest level: every atom and bond is splatted into the voxels it can reach, with §4's
+// penetration ratios (Fig. 4), in voxel units (voxel side 1, diagonal D = √3):
+//   atom  (centre c, radius r_a): r = distance from c to the voxel's closest point;
+//         r < r_a adds (r_a − r)/D.
+//   bond  (segment a–b, radius R): r = signed distance from the voxel centre to the cylinder
+//         surface (distance to the segment − R, so the ends are rounded, inside the atoms
+//         in ball-and-stick and licorice); r < D/2 adds (D/2 − r)/D.
+// Both terms are continuous and 1/D-Lipschitz in the positions: moving an atom by δ changes
+// any voxel by at most δ/D (the clamp to [0,1] keeps that), which is what removes popping.
+// Ellipsoids count as spheres of the same volume (radius ∛|det A|).
+//
+// Coarser levels are the mean of their 8 children, not filled directly with their own D as
+// the paper's compute shader does: (1) every level is then exactly consistent with the finest
+// (a coarse voxel is the occupied fraction of its children, the mip-map Crassin et al.'s cone
+// tracing assumes), (2) they cost 1/7 of the finest level instead of one splat per element per
+// level, and (3) the direct fill saturates at coarse levels, where many atoms each add a
+// share, which §Fig. 6 shows as over-dark creases.
+//
+// Determinism: the finest grid is cut into slabs of z slices; elements are binned to the
+// slabs they touch (in index order) and one task per slab adds them in that order, so every
+// voxel sums the same terms in the same order for any thread count.
+#include "ao/occupancy_pyramid.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <glm/glm.hpp>
+
+#include "common/check.h"
+
+namespace softmol::ao {
+namespace {
+
+constexpr float kSqrt3 = 1.7320508075688772f;
+constexpr int kSlabSlices = 4;   // z slices per task at the finest level
+constexpr int kBinChunks = 64;   // fixed number of element chunks for binning (not threads)
+
+using Element = detail::PyramidElement;
+
+// floor() as an int without a libm call (x86-64 baseline has no roundss); |v| < 2³¹.
+inline int FloorInt(float v) {
+  const int i = int(v);
+  return i - (v < float(i) ? 1 : 0);
+}
+
+// §4, atom: distance from the centre to the voxel's closest point (per-axis clamp).
+inline float AxisGap(float c, float lo) {
+  const float below = lo - c, above = c - (lo + 1.0f);
+  return below > 0.0f ? below : (above > 0.0f ? above : 0.0f);
+}
+
+struct Hasher {
+  uint64_t h = 0x243F6A8885A308D3ull;
+  void Bytes(const void* p, size_t n) {
+    const auto* b = static_cast<const unsigned char*>(p);
+    size_t i = 0;
+    for (; i + 8 <= n; i += 8) {
+      uint64_t w;
+      std::memcpy(&w, b + i, 8);
+      Mix(w);
+    }
+    uint64_t tail = 0;
+    std::memcpy(&tail, b + i, n - i);
+    Mix(tail ^ (uint64_t(n) << 56));
+  }
+  void Mix(uint64_t w) {
+    h ^= w + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
+    h *= 0xBF58476D1CE4E5B9ull;
+  }
+  template <class T>
+  void Vec(const std::vector<T>& v) {
+    Mix(v.size());
+    if (!v.empty()) Bytes(v.data(), v.size() * sizeof(T));
+  }
+};
+
+uint64_t HashInputs(const raster::PrimitiveScene& s, const PyramidOptions& o) {
+  Hasher h;
+  h.Mix(uint64_t(o.resolution) << 32 | uint32_t(o.coarsest));
+  h.Vec(s.spheres.x), h.Vec(s.spheres.y), h.Vec(s.spheres.z), h.Vec(s.spheres.radius);
+  h.Vec(s.cylinders.x0), h.Vec(s.cylinders.y0), h.Vec(s.cylinders.z0);
+  h.Vec(s.cylinders.x1), h.Vec(s.cylinders.y1), h.Vec(s.cylinders.z1), h.Vec(s.cylinders.radius);
+  h.Vec(s.ellipsoids.x), h.Vec(s.ellipsoids.y), h.Vec(s.ellipsoids.z), h.Vec(s.ellipsoids.axes);
+  return h.h;
+}
+
+bool Finite3(double x, double y, double z) {
+  return std::isfinite(x) && std::isfinite(y) && std::isfinite(z);
+}
+
+void SplatSphere(const Element& e, int res, int zLo, int zHi, float* grid) {
+  const float r = e.radius, r2 = r * r;
+  const int x0 = std::max(FloorInt((e.a.x - r)), 0), x1 = std::min(int(e.a.x + r), res - 1);
+  const int y0 = std::max(FloorInt((e.a.y - r)), 0), y1 = std::min(int(e.a.y + r), res - 1);
+  const int z0 = std::max(e.z0, zLo), z1 = std::min(e.z1, zHi);
+  if (x0 > x1 || y0 > y1) return;
+  float gx2[256];
+  for (int x = x0; x <= x1; ++x) {
+    const float g = AxisGap(e.a.x, float(x));
+    gx2[x - x0] = g * g;
+  }
+  constexpr float kInvD = 1.0f / kSqrt3;
+  for (int z = z0; z <= z1; ++z) {
+    const float gz = AxisGap(e.a.z, float(z)), gz2 = gz * gz;
+    for (int y = y0; y <= y1; ++y) {
+      const float gy = AxisGap(e.a.y, float(y)), gzy2 = gz2 + gy * gy;
+      if (gzy2 >= r2) continue;
+      float* row = grid + (size_t(z) * size_t(res) + size_t(y)) * size_t(res);
+      for (int x = x0; x <= x1; ++x) {
+        const float d2 = gzy2 + gx2[x - x0];
+        if (d2 < r2) row[x] += (r - std::sqrt(d2)) * kInvD;  // §4: (r_a − r)/D
+      }
+    }
+  }
+}
+
+void SplatBond(const Element& e, int res, int zLo, int zHi, float* grid) {
+  const float halfD = 0.5f * kSqrt3, reach = e.radius + halfD;
+  const glm::vec3 lo = glm::min(e.a, e.b) - reach, hi = glm::max(e.a, e.b) + reach;
+  // Voxel centres x + 0.5 within [lo, hi].
+  const int x0 = std::max(-FloorInt(0.5f - lo.x), 0), x1 = std::min(int(hi.x - 0.5f), res - 1);
+  const int y0 = std::max(-FloorInt(0.5f - lo.y), 0), y1 = std::min(int(hi.y - 0.5f), res - 1);
+  const int z0 = std::max(e.z0, zLo), z1 = std::min(e.z1, zHi);
+  const glm::vec3 ab = e.b - e.a;
+  const float len2 = glm::dot(ab, ab);
+  const float invLen2 = len2 > 0.0f ? 1.0f / len2 : 0.0f;
+  constexpr float kInvD = 1.0f / kSqrt3;
+  // Long rows (fine grids) are trimmed to the capsule's bounding sphere (centre m, radius
+  // reach + |ab|/2), padded by 0.01 voxel, far above float rounding, so no voxel that adds
+  // something is lost; short rows (coarse grids, where a bond spans ~3 voxels) are not, since
+  // the trim costs more than it saves. Either way the sums are the same bits.
+  const glm::vec3 m = 0.5f * (e.a + e.b);
+  const float bound = reach + 0.5f * std::sqrt(len2) + 0.01f, bound2 = bound * bound;
+  const bool trim = x1 - x0 >= 6;
+  for (int z = z0; z <= z1; ++z)
+    for (int y = y0; y <= y1; ++y) {
+      int xa = x0, xb = x1;
+      if (trim) {
+        const float dy = float(y) + 0.5f - m.y, dz = float(z) + 0.5f - m.z;
+        const float rest = bound2 - dy * dy - dz * dz;
+        if (rest <= 0.0f) continue;
+        const float half = std::sqrt(rest);
+        xa = std::max(x0, FloorInt(m.x - half - 0.5f));
+        xb = std::min(x1, int(m.x + half));
+      }
+      float* row = grid + (size_t(z) * size_t(res) + size_t(y)) * size_t(res);
+      for (int x = xa; x <= xb; ++x) {
+        const glm::vec3 p = glm::vec3(float(x), float(y), float(z)) + 0.5f - e.a;
+        float t = glm::dot(p, ab) * invLen2;
+        t = t < 0.0f ? 0.0f : (t > 1.0f ? 1.0f : t);
+        const glm::vec3 q = p - t * ab;
+        const float r = std::sqrt(glm::dot(q, q)) - e.radius;  // signed distance to surface
+        // §4: (D/2 − r)/D where r < D/2, else nothing. Branchless (the hit pattern is
+        // unpredictable); adding +0 to a value ≥ 0 leaves it unchanged, bit for bit.
+        const float add = (halfD - r) * kInvD;
+        row[x] += add > 0.0f ? add : 0.0f;
+      }
+    }
+}
+
+}  // namespace
+
+float AtomOccupancy(glm::vec3 center, float radius) {
+  const float gx = AxisGap(center.x, 0.0f), gy = AxisGap(center.y, 0.0f),
+              gz = AxisGap(center.z, 0.0f);
+  const float d2 = gz * gz + gy * gy + gx * gx;
+  return d2 < radius * radius ? (radius - std::sqrt(d2)) * (1.0f / kSqrt3) : 0.0f;
+}
+
+float OccupancyPyramid::At(int level, int x, int y, int z) const {
+  const PyramidLevel& l = levels[size_t(level)];
+  if (x < 0 || y < 0 || z < 0 || x >= l.resolution || y >= l.resolution || z >= l.resolution)
+    return 0.0f;
+  return l.occupancy[(size_t(z) * size_t(l.resolution) + size_t(y)) * size_t(l.resolution) +
+                     size_t(x)];
+}
+
+void BuildOccupancyPyramid(const raster::PrimitiveScene& scene, const PyramidOptions& options,
+                           OccupancyPyramid& pyr) {
+  const int res = options.resolution;
+  SOFTMOL_CHECK(res >= 32 && res <= 256 && std::has_single_bit(unsigned(res)));
+  SOFTMOL_CHECK(options.coarsest >= 1 && options.coarsest <= res &&
+                std::has_single_bit(unsigned(options.coarsest)));
+
+  // Box of every drawable element (double, world space). min/max are exact, so the chunked
+  // reduction gives the same box for any thread count.
+  const auto& S = scene.spheres;
+  const auto& E = scene.ellipsoids;
+  const auto& C = scene.cylinders;
+  const size_t nS = S.size(), nE = E.size(), nC = C.size(), n = nS + nE + nC;
+  auto ellipsoidRadius = [&](size_t i) {  // same volume: ∛|det A|
+    const auto& m = E.axes[i];
+    const double det = double(m[0]) * (double(m[4]) * m[8] - double(m[5]) * m[7]) -
+                       double(m[3]) * (double(m[1]) * m[8] - double(m[2]) * m[7]) +
+                       double(m[6]) * (double(m[1]) * m[5] - double(m[2]) * m[4]);
+    return std::cbrt(std::abs(det));
+  };
+  // Element i: its world ends and radius, or false when it is not drawable.
+  auto world = [&](size_t i, glm::dvec3& a, glm::dvec3& b, double& r) {
+    if (i < nS) {
+      a = b = glm::dvec3(S.x[i], S.y[i], S.z[i]);
+      r = S.radius[i];
+    } else if (i < nS + nE) {
+      const size_t j = i - nS;
+      a = b = glm::dvec3(E.x[j], E.y[j], E.z[j]);
+      r = ellipsoidRadius(j);
+    } else {
+      const size_t j = i - nS - nE;
+      a = glm::dvec3(C.x0[j], C.y0[j], C.z0[j]);
+      b = glm::dvec3(C.x1[j], C.y1[j], C.z1[j]);
+      r = C.radius[j];
+    }
+    return r > 0.0 && std::isfinite(r) && Finite3(a.x, a.y, a.z) && Finite3(b.x, b.y, b.z);
+  };
+  constexpr size_t kChunks = 64;
+  const size_t chunk = (n + kChunks - 1) / kChunks;
+  std::vector<glm::dvec3> chunkLo(kChunks, glm::dvec3(INFINITY));
+  std::vector<glm::dvec3> chunkHi(kChunks, glm::dvec3(-INFINITY));
+  tbb::parallel_for(size_t(0), kChunks, [&](size_t c) {
+    glm::dvec3 lo(INFINITY), hi(-INFINITY), a, b;
+    double r;
+    for (size_t i = c * chunk; i < std::min(n, (c + 1) * chunk); ++i)
+      if (world(i, a, b, r)) {
+        lo = glm::min(lo, glm::min(a, b) - r);
+        hi = glm::max(hi, glm::max(a, b) + r);
+      }
+    chunkLo[c] = lo, chunkHi[c] = hi;
+  });
+  glm::dvec3 lo(INFINITY), hi(-INFINITY);
+  for (size_t c = 0; c < kChunks; ++c) lo = glm::min(lo, chunkLo[c]), hi = glm::max(hi, chunkHi[c]);
+  if (!(lo.x <= hi.x)) lo = glm::dvec3(0.0), hi = glm::dvec3(1.0);  // nothing drawable
+
+  // A cube (isotropic voxels, so a cone's tangent sphere maps to one level) with one finest
+  // voxel of margin on each side, so no surface sits on the outer voxel faces.
+  const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z, 1e-3});
+  const double voxel = extent / double(res - 2);
+  pyr.size = voxel * res;
+  pyr.origin = 0.5 * (lo + hi) - 0.5 * pyr.size;
+  pyr.levels.resize(size_t(std::countr_zero(unsigned(res)) -
+                           std::countr_zero(unsigned(options.coarsest)) + 1));
+  for (size_t l = 0; l < pyr.levels.size(); ++l) {
+    PyramidLevel& L = pyr.levels[l];
+    L.resolution = res >> l;
+    L.voxelSize = pyr.size / L.resolution;
+    L.occupancy.resize(size_t(L.resolution) * size_t(L.resolution) * size_t(L.resolution));
+  }
+
+  // Elements in finest voxel units (relative to the origin in double, then float).
+  const double inv = 1.0 / voxel;
+  std::vector<Element>& elems = pyr.elements;
+  elems.resize(n);
+  const tbb::blocked_range<size_t> all(0, n, 4096);
+  tbb::parallel_for(all, [&](const tbb::blocked_range<size_t>& rg) {
+    glm::dvec3 a, b;
+    double r;
+    for (size_t i = rg.begin(); i < rg.end(); ++i) {
+      Element& e = elems[i];
+      if (!world(i, a, b, r)) {
+        e.z0 = 1, e.z1 = 0;
+        continue;
+      }
+      e.bond = i >= nS + nE;
+      e.a = glm::vec3((a - pyr.origin) * inv);
+      e.b = glm::vec3((b - pyr.origin) * inv);
+      e.radius = float(r * inv);
+      const float reach = e.radius + (e.bond ? 0.5f * kSqrt3 : 0.0f);
+      const float zl = std::min(e.a.z, e.b.z) - reach, zh = std::max(e.a.z, e.b.z) + reach;
+      e.z0 = std::clamp(FloorInt((zl - (e.bond ? 0.5f : 0.0f))), 0, res - 1);
+      e.z1 = std::clamp(int(zh), 0, res - 1);
+    }
+  });
+
+  // Bin elements to slabs: counts per (chunk, slab), prefix in (slab, chunk) order, fill.
+  const int slabs = res / kSlabSlices;
+  const size_t binChunk = (n + kBinChunks - 1) / kBinChunks;
+  std::vector<uint32_t>& counts = pyr.binStart;
+  counts.assign(size_t(kBinChunks) * size_t(slabs) + 1, 0);
+  auto forChunks = [&](auto&& body) {
+    tbb::parallel_for(0, kBinChunks, [&](int c) {
+      const size_t b = size_t(c) * binChunk, e = std::min(n, b + binChunk);
+      for (size_t i = b; i < e; ++i)
+        if (elems[i].z0 <= elems[i].z1)
+          for (int s = elems[i].z0 / kSlabSlices; s <= elems[i].z1 / kSlabSlices; ++s)
+            body(c, s, i);
+    });
+  };
+  forChunks([&](int c, int s, size_t) { ++counts[size_t(s) * kBinChunks + size_t(c) + 1]; });
+  for (size_t k = 1; k < counts.size(); ++k) counts[k] += counts[k - 1];
+  std::vector<uint32_t>& binned = pyr.binned;
+  binned.resize(counts.back());
+  {
+    std::vector<uint32_t> cursor(counts.begin(), counts.end() - 1);
+    forChunks([&](int c, int s, size_t i) {
+      binned[cursor[size_t(s) * kBinChunks + size_t(c)]++] = uint32_t(i);
+    });
+  }
+
+  float* fine = pyr.levels[0].occupancy.data();
+  const size_t slice = size_t(res) * size_t(res);
+  tbb::parallel_for(0, slabs, [&](int s) {
+    const int zLo = s * kSlabSlices, zHi = zLo + kSlabSlices - 1;
+    float* slab = fine + size_t(zLo) * slice;
+    std::fill(slab, slab + kSlabSlices * slice, 0.0f);
+    for (uint32_t k = counts[size_t(s) * kBinChunks]; k < counts[size_t(s + 1) * kBinChunks]; ++k) {
+      const Element& e = elems[binned[k]];
+      if (e.bond) {
+        SplatBond(e, res, zLo, zHi, fine);
+      } else {
+        SplatSphere(e, res, zLo, zHi, fine);
+      }
+    }
+    for (float* v = slab; v < slab + kSlabSlices * slice; ++v) *v = *v < 1.0f ? *v : 1.0f;
+  });
+
+  // Coarser levels: mean of the 8 children, summed in a fixed order.
+  for (size_t l = 1; l < pyr.levels.size(); ++l) {
+    const PyramidLevel& child = pyr.levels[l - 1];
+    PyramidLevel& L = pyr.levels[l];
+    const size_t cr = size_t(child.resolution), r = size_t(L.resolution);
+    tbb::parallel_for(size_t(0), r, [&](size_t z) {
+      for (size_t y = 0; y < r; ++y)
+        for (size_t x = 0; x < r; ++x) {
+          const float* c = child.occupancy.data() + ((2 * z) * cr + 2 * y) * cr + 2 * x;
+          const float* c1 = c + cr * cr;
+          const float sum = ((c[0] + c[1]) + (c[cr] + c[cr + 1])) +
+                            ((c1[0] + c1[1]) + (c1[cr] + c1[cr + 1]));
+          L.occupancy[(z * r + y) * r + x] = sum * 0.125f;
+        }
+    });
+  }
+  pyr.inputHash = 0;  // unknown: only UpdateOccupancyPyramid pays for hashing
+  pyr.hashed = false;
+  pyr.built = true;
+}
+
+bool UpdateOccupancyPyramid(const raster::PrimitiveScene& scene, const PyramidOptions& options,
+                            OccupancyPyramid& pyramid) {
+  const uint64_t hash = HashInputs(scene, options);
+  if (pyramid.built && pyramid.hashed && pyramid.inputHash == hash) return false;
+  BuildOccupancyPyramid(scene, options, pyramid);
+  pyramid.inputHash = hash;
+  pyramid.hashed = true;
+  return true;
+}
+
+}  // namespace softmol::ao
