@@ -21,7 +21,8 @@ using raster::kNoPrimitive;
 
 // Takes the AOVs of each output pixel from one representative sample (sub-sample (s/2, s/2)):
 // depth, normals and ids must not be averaged across a silhouette.
-void ResolveAovs(const raster::GBuffer& g, const RenderOptions& o, RenderedFrame& f) {
+void ResolveAovs(const raster::GBuffer& g, const std::vector<float>& ao, const RenderOptions& o,
+                 RenderedFrame& f) {
   const int s = o.ssaa;
   tbb::parallel_for(tbb::blocked_range<int>(0, f.height, 8), [&](const tbb::blocked_range<int>& rows) {
     for (int row = rows.begin(); row < rows.end(); ++row) {
@@ -37,6 +38,7 @@ void ResolveAovs(const raster::GBuffer& g, const RenderOptions& o, RenderedFrame
           f.normalZ[out] = covered ? g.normalZ[c] : 0.0f;
         }
         if (o.aovs & kAovId) f.id[out] = g.primitiveId[c];
+        if (o.aovs & kAovAo) f.ao[out] = ao.empty() ? 1.0f : ao[c];
       }
     }
   });
@@ -49,6 +51,9 @@ uint32_t RequiredChannels(const RenderOptions& o) {
   if (o.color) ch |= raster::kNormal | raster::kBaseColor | raster::kPrimitiveId;
   if (o.aovs & kAovNormal) ch |= raster::kNormal | raster::kPrimitiveId;
   if (o.aovs & kAovId) ch |= raster::kPrimitiveId;
+  // AO is computed where it is seen: it needs the surface (depth, normal) of each sample.
+  const bool aoWanted = o.ao != AoMode::kNone && (o.color || (o.aovs & kAovAo));
+  if (aoWanted) ch |= raster::kNormal | raster::kPrimitiveId;
   return ch;
 }
 
@@ -82,13 +87,36 @@ void RenderFrame(const raster::PrimitiveScene& scene, const raster::Camera& came
   const Clock::time_point t1 = Clock::now();
   f.passes.push_back({"gbuffer", 0.0, MsBetween(t0, t1)});
 
+  // AO passes, only when AO is asked for and someone reads it (shading or the AO AOV).
+  Clock::time_point tAo = t1;
+  std::vector<float>& ao = res.ao;
+  ao.clear();
+  if (o.ao != AoMode::kNone && (o.color || (o.aovs & kAovAo))) {
+    ao.resize(size_t(g.width) * size_t(g.height));
+    if (o.ao == AoMode::kCone) {
+      const bool rebuilt = ao::UpdateOccupancyPyramid(scene, o.pyramid, res.pyramid);
+      const Clock::time_point tPyramid = Clock::now();
+      f.passes.push_back({rebuilt ? "occupancy pyramid" : "occupancy pyramid (reused)", MsBetween(t0, tAo),
+                          MsBetween(tAo, tPyramid)});
+      ao::ConeTraceAo(res.pyramid, cam, g, o.cone, ao);
+      const Clock::time_point tCone = Clock::now();
+      f.passes.push_back({"cone ao", MsBetween(t0, tPyramid), MsBetween(tPyramid, tCone)});
+      tAo = tCone;
+    } else {
+      ao = ao::ReferenceAo(scene, cam, g, o.reference);
+      const Clock::time_point tRef = Clock::now();
+      f.passes.push_back({"reference ao", MsBetween(t0, tAo), MsBetween(tAo, tRef)});
+      tAo = tRef;
+    }
+  }
+
   // Pass 2: deferred shading fused with the supersample resolve, only when colour is wanted.
-  Clock::time_point t2 = t1;
+  Clock::time_point t2 = tAo;
   if (o.color) {
     f.rgba.resize(4 * n);  // every element is written: no need to clear
-    ShadeAndResolve(g, o.ssaa, o.shading, Backdrop{o.background, o.transparent}, {}, f.rgba);
+    ShadeAndResolve(g, o.ssaa, o.shading, Backdrop{o.background, o.transparent}, ao, f.rgba);
     t2 = Clock::now();
-    f.passes.push_back({"shading", MsBetween(t0, t1), MsBetween(t1, t2)});
+    f.passes.push_back({"shading", MsBetween(t0, tAo), MsBetween(tAo, t2)});
   }
 
   if (!o.color) f.rgba.clear();
@@ -101,8 +129,9 @@ void RenderFrame(const raster::PrimitiveScene& scene, const raster::Camera& came
   f.normalY.resize(o.aovs & kAovNormal ? n : 0);
   f.normalZ.resize(o.aovs & kAovNormal ? n : 0);
   f.id.resize(o.aovs & kAovId ? n : 0);
+  f.ao.resize(o.aovs & kAovAo ? n : 0);
   if (o.aovs != 0) {
-    ResolveAovs(g, o, f);
+    ResolveAovs(g, ao, o, f);
     t4 = Clock::now();
     f.passes.push_back({"aovs", MsBetween(t0, t2), MsBetween(t2, t4)});
   }

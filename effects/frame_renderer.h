@@ -10,6 +10,9 @@
 
 #include <glm/vec3.hpp>
 
+#include "ao/cone_trace.h"
+#include "ao/occupancy_pyramid.h"
+#include "ao/reference_ao.h"
 #include "effects/shading.h"
 #include "raster/camera.h"
 #include "raster/frame.h"
@@ -18,7 +21,14 @@
 namespace softmol::effects {
 
 // Arbitrary output variables besides colour (DESIGN.md defines each).
-enum Aov : uint32_t { kAovDepth = 1, kAovNormal = 2, kAovId = 4 };
+enum Aov : uint32_t { kAovDepth = 1, kAovNormal = 2, kAovId = 4, kAovAo = 8 };
+
+// Which ambient occlusion scales the ambient term (DESIGN.md defines AO; 1 = open).
+enum class AoMode {
+  kNone,       // no AO pass runs
+  kCone,       // occupancy pyramid + cone tracing, rebuilt per frame (Hermosilla et al.)
+  kReference,  // ray-traced ground truth in double precision (slow; the yardstick)
+};
 
 struct RenderOptions {
   int ssaa = 1;                          // samples per pixel along each axis, 1..4
@@ -28,6 +38,10 @@ struct RenderOptions {
   uint32_t aovs = 0;                     // Aov bits
   int tileSize = 32;
   ShadingOptions shading;
+  AoMode ao = AoMode::kNone;
+  ao::PyramidOptions pyramid;     // kCone
+  ao::ConeAoOptions cone;         // kCone
+  ao::ReferenceAoOptions reference;  // kReference
 };
 
 struct PassTiming {
@@ -42,6 +56,7 @@ struct RenderedFrame {
   std::vector<float> depth;                      // kAovDepth: eye-space Å along the view axis, +inf background
   std::vector<float> normalX, normalY, normalZ;  // kAovNormal: eye space, 0 on background
   std::vector<uint32_t> id;                      // kAovId: primitive id, 0xFFFFFFFF background
+  std::vector<float> ao;                         // kAovAo: accessibility in [0,1], 1 background
   std::vector<PassTiming> passes;                // exactly the passes that ran, in order
   raster::FrameStats rasterStats{};
   double totalMs = 0;
@@ -52,6 +67,8 @@ struct RenderedFrame {
 struct FrameResources {
   raster::FrameWorkspace workspace;
   raster::GBuffer gbuffer;
+  ao::OccupancyPyramid pyramid;  // rebuilt only when the scene moved
+  std::vector<float> ao;         // one accessibility per G-buffer sample
 };
 
 // The G-buffer channels the options need (what "only what the scene calls for" means here).

@@ -122,5 +122,69 @@ TEST(FrameRenderer, EyeInsideASphereGivesNoNaN) {
   for (float v : f.depth) ASSERT_FALSE(std::isnan(v));
 }
 
+TEST(FrameRenderer, ConeAoRunsItsPassesAndReusesThePyramid) {
+  raster::PrimitiveScene scene;
+  scene.spheres.Add({0, 0, 0}, 1.5f, 0xFFFFFF);
+  scene.spheres.Add({2.6, 0, 0}, 1.5f, 0xFFFFFF);  // two touching-ish atoms: a crease
+  raster::Camera cam = LookDownZ(48, 32, 12.0);
+  raster::FitNearFar(cam, scene);
+  RenderOptions o;
+  o.ao = AoMode::kCone;
+  o.aovs = kAovAo;
+  FrameResources resources;
+  RenderedFrame f;
+  RenderFrame(scene, cam, o, f, &resources);
+  EXPECT_EQ(PassNames(f),
+            (std::vector<std::string>{"gbuffer", "occupancy pyramid", "cone ao", "shading", "aovs"}));
+  ASSERT_EQ(f.ao.size(), size_t(48 * 32));
+  float lo = 1.0f;
+  for (float a : f.ao) {
+    ASSERT_TRUE(a >= 0.0f && a <= 1.0f) << a;
+    lo = std::min(lo, a);
+  }
+  EXPECT_EQ(f.ao[0], 1.0f) << "background is open";
+  EXPECT_LT(lo, 0.9f) << "the crease between the atoms is occluded";
+  // Nothing moved: the second frame reuses the pyramid, and gives the same bits.
+  const std::vector<float> first = f.ao;
+  RenderFrame(scene, cam, o, f, &resources);
+  EXPECT_EQ(f.passes[1].name, "occupancy pyramid (reused)");
+  EXPECT_EQ(f.ao, first);
+}
+
+TEST(FrameRenderer, NoAoPassWithoutAoOrWithoutAReader) {
+  const auto scene = OneSphere();
+  raster::Camera cam = LookDownZ(16, 16);
+  raster::FitNearFar(cam, scene);
+  RenderOptions o;
+  o.aovs = kAovAo;  // AO AOV asked for, but AO off: every pixel open, no AO pass
+  RenderedFrame f = RenderFrame(scene, cam, o);
+  EXPECT_EQ(PassNames(f), (std::vector<std::string>{"gbuffer", "shading", "aovs"}));
+  for (float a : f.ao) EXPECT_EQ(a, 1.0f);
+  o.ao = AoMode::kCone;  // AO on, but nobody reads it: no colour and no AO AOV
+  o.color = false;
+  o.aovs = kAovDepth;
+  f = RenderFrame(scene, cam, o);
+  EXPECT_EQ(PassNames(f), (std::vector<std::string>{"gbuffer", "aovs"}));
+}
+
+TEST(FrameRenderer, AoDarkensTheAmbientTerm) {
+  raster::PrimitiveScene scene;
+  for (int i = 0; i < 5; ++i) scene.spheres.Add({1.6 * i - 3.2, 0, 0}, 1.2f, 0xFFFFFF);
+  raster::Camera cam = LookDownZ(64, 32, 14.0);
+  raster::FitNearFar(cam, scene);
+  RenderOptions o;
+  const RenderedFrame plain = RenderFrame(scene, cam, o);
+  o.ao = AoMode::kReference;
+  o.reference.rays = 64;
+  const RenderedFrame occluded = RenderFrame(scene, cam, o);
+  double sumPlain = 0, sumOccluded = 0;
+  for (size_t i = 0; i < plain.rgba.size(); i += 4) {
+    EXPECT_LE(occluded.rgba[i], plain.rgba[i] + 1e-6f) << "AO can only take light away";
+    sumPlain += plain.rgba[i];
+    sumOccluded += occluded.rgba[i];
+  }
+  EXPECT_LT(sumOccluded, sumPlain);
+}
+
 }  // namespace
 }  // namespace softmol::effects
