@@ -32,6 +32,10 @@ struct RenderArgs {
   std::string background = "ffffff";
   std::string aov;          // depth,normal,id
   std::string profile;      // Chrome trace-event JSON
+  std::string ao = "none";       // none | cone | reference
+  int cones = 9;                  // --ao cone: 3, 5 or 9
+  int aoRays = 256;               // --ao reference: rays per pixel
+  int aoGrid = 128;               // --ao cone: finest occupancy grid resolution
   std::string backend = "cpu";  // cpu | gl (the OpenGL mirror; builds with SOFTMOL_BUILD_GL)
   double fov = 30.0;
   double ortho = 0.0;

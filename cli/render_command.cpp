@@ -4,6 +4,7 @@
 #include <charconv>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <memory>
 #include <string_view>
@@ -20,6 +21,10 @@
 #include "io/image_io.h"
 #include "raster/camera.h"
 #include "raster/representation.h"
+#if SOFTMOL_HAVE_GL
+#include "gl/context_egl.h"
+#include "gl/frame_renderer.h"
+#endif
 
 namespace softmol::cli {
 namespace {
@@ -56,7 +61,8 @@ uint32_t ParseAovs(const std::string& list) {
     if (name == "depth") aovs |= effects::kAovDepth;
     else if (name == "normal") aovs |= effects::kAovNormal;
     else if (name == "id") aovs |= effects::kAovId;
-    else throw io::InputError({"--aov"}, "unknown AOV '" + name + "' (depth, normal, id)");
+    else if (name == "ao") aovs |= effects::kAovAo;
+    else throw io::InputError({"--aov"}, "unknown AOV '" + name + "' (depth, normal, id, ao)");
   }
   return aovs;
 }
@@ -81,6 +87,7 @@ io::ImageFile ToExr(const effects::RenderedFrame& f, bool withColor) {
     img.channels.push_back({"N.z", f.normalZ, {}});
   }
   if (!f.id.empty()) img.channels.push_back({"id", {}, f.id});
+  if (!f.ao.empty()) img.channels.push_back({"AO", f.ao, {}});
   return img;
 }
 
@@ -103,11 +110,18 @@ void AddRenderCommand(CLI::App& app, RenderArgs& a) {
   c->add_option("--ssaa", a.ssaa, "Supersampling: N×N samples per pixel")->capture_default_str()->check(CLI::Range(1, 4));
   c->add_option("--background", a.background, "Background colour RRGGBB (sRGB hex)")->capture_default_str();
   c->add_flag("--transparent", a.transparent, "Transparent background (alpha 0)");
-  c->add_option("--aov", a.aov, "Extra outputs: depth,normal,id (EXR channels Z, N.x N.y N.z, id)");
+  c->add_option("--aov", a.aov, "Extra outputs: depth,normal,id,ao (EXR channels Z, N.x N.y N.z, id, AO)");
+  c->add_option("--ao", a.ao, "Ambient occlusion: none, cone (occupancy pyramid, per frame) or reference (ray traced)")
+      ->capture_default_str()->check(CLI::IsMember({"none", "cone", "reference"}));
+  c->add_option("--cones", a.cones, "Cones per pixel for --ao cone")->capture_default_str()->check(CLI::IsMember({3, 5, 9}));
+  c->add_option("--ao-rays", a.aoRays, "Rays per pixel for --ao reference")->capture_default_str()->check(CLI::Range(1, 65536));
+  c->add_option("--ao-grid", a.aoGrid, "Finest occupancy grid resolution for --ao cone")->capture_default_str()->check(CLI::IsMember({32, 64, 128, 256}));
   c->add_option("--threads", a.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
   c->add_option("--profile", a.profile, "Write per-pass timings as Chrome trace-event JSON (open in Perfetto)");
   c->add_option("--repeat", a.repeat, "Render the frame N times (steady-state timings)")->capture_default_str()->check(CLI::Range(1, 100000));
   c->add_option("--tile-size", a.tileSize, "Raster tile size in pixels")->capture_default_str()->check(CLI::IsMember({8, 16, 32, 64, 128}));
+  c->add_option("--backend", a.backend, "cpu | gl (the OpenGL 4.5 mirror through EGL, surfaceless)")
+      ->capture_default_str()->check(CLI::IsMember({"cpu", "gl"}));
   c->add_flag("-q,--quiet", a.quiet, "Print nothing on success");
 }
 
@@ -117,11 +131,31 @@ int RunRender(const RenderArgs& a) {
   const ImageSize size = ParseSize(a.size, "--size");
   const raster::Style style = ParseStyle(a.style);
   const uint32_t aovs = ParseAovs(a.aov);
+#if !SOFTMOL_HAVE_GL
+  if (a.backend == "gl")
+    throw io::InputError({"--backend"}, "this softmol was built without the OpenGL mirror (configure with -DSOFTMOL_BUILD_GL=ON)");
+#endif
+  // The mirror has the passes whose CPU twins exist in GLSL (gl/README.md): AO is not one yet.
+  if (a.backend == "gl" && a.ao != "none")
+    throw io::InputError({"--ao"}, "ambient occlusion is not mirrored in the GL backend yet (use --backend cpu)");
+  if (a.backend == "gl" && (aovs & effects::kAovAo))
+    throw io::InputError({"--aov"}, "the AO output is not mirrored in the GL backend yet (use --backend cpu)");
   effects::RenderOptions ro;
   ro.ssaa = a.ssaa;
   ro.transparent = a.transparent;
   ro.aovs = aovs;
   ro.tileSize = a.tileSize;
+  ro.ao = a.ao == "cone" ? effects::AoMode::kCone
+          : a.ao == "reference" ? effects::AoMode::kReference : effects::AoMode::kNone;
+  if (ro.ao != effects::AoMode::kNone) {
+    // With AO the ambient term carries the shape (QuteMol's look): more ambient, less direct.
+    ro.shading.ambient = 0.75f;
+    ro.shading.diffuse = 0.40f;
+    ro.shading.specular = 0.25f;
+  }
+  ro.cone.cones = a.cones;
+  ro.reference.rays = a.aoRays;
+  ro.pyramid.resolution = a.aoGrid;
   const uint32_t bg = ParseHexColor(a.background, "--background");
   const effects::LinearRgb bgLinear = effects::UnpackSrgb(bg);
   ro.background = glm::vec3(bgLinear.r, bgLinear.g, bgLinear.b);
@@ -133,7 +167,7 @@ int RunRender(const RenderArgs& a) {
 
   ProfileTrace trace;
   const Clock::time_point start = Clock::now();
-  const bool needsBonds = style == raster::Style::kBalls || style == raster::Style::kLicorice;
+  const bool needsBonds = style != raster::Style::kSpacefill;  // sticks, and the ellipsoids' bonds
   LoadedMolecule loaded = LoadMolecule(a.molecule, a.assembly, "", needsBonds);
   double t = 0;
   for (const StepTime& s : loaded.steps) {
@@ -181,8 +215,37 @@ int RunRender(const RenderArgs& a) {
   effects::FrameResources resources;
   double frameStart = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
   double best = 1e300, sum = 0;
+#if SOFTMOL_HAVE_GL
+  // --backend gl: the same scene, camera and options through the GL mirror (gl/).
+  std::unique_ptr<gl::Context> glContext;
+  std::unique_ptr<gl::FrameRenderer> glRenderer;
+  if (a.backend == "gl") {
+    // llvmpipe takes its thread count from the environment, read when the context starts.
+    if (a.threads > 0) setenv("LP_NUM_THREADS", std::to_string(a.threads).c_str(), /*overwrite=*/0);
+    std::string why;
+    glContext = gl::Context::Create(why);
+    if (!glContext) throw io::InputError({"--backend"}, "gl: no EGL/OpenGL 4.5 context: " + why);
+    try {
+      glRenderer = std::make_unique<gl::FrameRenderer>();
+    } catch (const std::runtime_error& e) {  // a driver that rejects the GLSL
+      throw io::InputError({"--backend"}, std::string("gl: ") + e.what());
+    }
+  }
+#endif
   for (int k = 0; k < a.repeat; ++k) {
+#if SOFTMOL_HAVE_GL
+    if (glRenderer) {
+      try {
+        glRenderer->RenderFrame(scene, cam, ro, frame);
+      } catch (const std::runtime_error& e) {  // a GL error (driver limit or mirror bug)
+        throw io::InputError({"--backend"}, std::string("gl: ") + e.what());
+      }
+    } else {
+      effects::RenderFrame(scene, cam, ro, frame, &resources);
+    }
+#else
     effects::RenderFrame(scene, cam, ro, frame, &resources);
+#endif
     trace.AddFrame(k, frameStart, frame);
     frameStart += frame.totalMs;
     best = std::min(best, frame.totalMs);

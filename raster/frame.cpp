@@ -50,9 +50,9 @@ constexpr int kChunks = 16;
 
 // Stable counting sort of (key, item) by key < kDepthBuckets, one parallel pass with per-chunk
 // histograms (offsets digit-major, chunk-minor): stable and independent of the thread count.
-// Keys are nearest depths quantised over [near, far] (4096 levels: ample for ordering front
-// to back); stability keeps equal keys in primitive-id order, so the output is deterministic.
-constexpr uint32_t kDepthBuckets = 4096;
+// Keys are nearest depths quantised by detail::DepthBucketer; stability keeps equal keys in
+// primitive-id order, so the output is deterministic.
+using detail::kDepthBuckets;
 void CountingSort(std::vector<uint32_t>& keys, std::vector<detail::BinEntry>& items,
                   std::vector<detail::BinEntry>& itemsTmp, std::vector<uint32_t>& hist) {
   const size_t n = keys.size();
@@ -196,8 +196,7 @@ FrameStats RenderGBuffer(const PrimitiveScene& scene, const Camera& camera,
                            : su.ellipsoidEntry[g - nS - nC];
     };
     const size_t len = (nAll + kChunks - 1) / kChunks;
-    const float zLo = fc.nearPlane;
-    const float zScale = float(kDepthBuckets) / (fc.farPlane - fc.nearPlane);
+    const detail::DepthBucketer bucket = detail::MakeDepthBucketer(fc);
     std::array<size_t, kChunks + 1> start{};
     tbb::parallel_for(0, kChunks, [&](int c) {
       size_t k = 0;
@@ -211,9 +210,7 @@ FrameStats RenderGBuffer(const PrimitiveScene& scene, const Camera& camera,
       for (size_t g = size_t(c) * len; g < std::min(nAll, (c + 1) * len); ++g) {
         if (key(g) == detail::kCulledKey) continue;
         const detail::BinEntry e = entry(g);
-        const float q = (e.zMin - zLo) * zScale;  // zMin ≥ near − 1e-5·near, so q > −1
-        ws.keys[k] =
-            q < float(kDepthBuckets - 1) ? uint32_t(q > 0.0f ? q : 0.0f) : kDepthBuckets - 1;
+        ws.keys[k] = bucket(e.zMin);
         ws.sorted[k++] = e;
       }
     });

@@ -43,8 +43,8 @@ HWY_INLINE void SolveQuadratic(D d, V a, V B, V C, V disc, V& tNear, V& tFar) {
 
 // Twin of PixelToRay (quadratic.inc): pixel centre to ray parameter.
 template <class D, class V = hn::Vec<D>>
-HWY_INLINE V PixelToRay(D d, V pixel, float half, float scale) {
-  return hn::Mul(hn::Sub(hn::Add(pixel, hn::Set(d, 0.5f)), hn::Set(d, half)), hn::Set(d, scale));
+HWY_INLINE V PixelToRay(D d, V pixel, float halfExtent, float scale) {
+  return hn::Mul(hn::Sub(hn::Add(pixel, hn::Set(d, 0.5f)), hn::Set(d, halfExtent)), hn::Set(d, scale));
 }
 
 // Twin of Dot3 (attributes.inc).

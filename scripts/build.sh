@@ -6,7 +6,10 @@ cd "$(dirname "$0")/.."
 preset=${1:-release}
 scripts/setup.sh
 jobs=$(nproc 2>/dev/null || echo 2)
-if [ ! -f "build/$preset/CMakeCache.txt" ]; then
+# Configure every time (cheap when nothing changed), so preset changes reach old build folders.
+if [ -f "build/$preset/CMakeCache.txt" ]; then
+  cmake --preset "$preset" >/dev/null
+else
   cmake --preset "$preset" -G Ninja >/dev/null
 fi
 cmake --build --preset "$preset" -j "$jobs"

@@ -4,4 +4,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh release
+# The GL mirror's comparisons run on Mesa's llvmpipe (no GPU needed): a missing GL context is a
+# failure here, not a skip.
+export SOFTMOL_REQUIRE_GL=1
 ctest --preset release -j "$(nproc 2>/dev/null || echo 2)" "$@"

@@ -51,4 +51,21 @@ struct SetupOutput {
 uint64_t SetupPrimitives(const PrimitiveScene& scene, const ViewSetup& view, SetupOutput& out,
                          bool surfaceFrame = true);
 
+// The front-to-back draw order: visible primitives in id order (spheres, cylinders,
+// ellipsoids), stably sorted by their nearest depth quantised to kDepthBuckets levels over
+// [near, far] (ample for ordering). Exact depth ties between primitives are broken by this
+// order, so every backend must draw in it: raster/frame.cpp sorts by it, the GL mirror
+// (gl/tile_kernel.cpp) draws in it.
+inline constexpr uint32_t kDepthBuckets = 4096;
+struct DepthBucketer {
+  float zLo, zScale;
+  uint32_t operator()(float zMin) const {
+    const float q = (zMin - zLo) * zScale;  // zMin ≥ near − 1e-5·near, so q > −1
+    return q < float(kDepthBuckets - 1) ? uint32_t(q > 0.0f ? q : 0.0f) : kDepthBuckets - 1;
+  }
+};
+inline DepthBucketer MakeDepthBucketer(const FrameConstants& fc) {
+  return {fc.nearPlane, float(kDepthBuckets) / (fc.farPlane - fc.nearPlane)};
+}
+
 }  // namespace softmol::raster::detail

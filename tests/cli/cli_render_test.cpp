@@ -117,6 +117,32 @@ TEST(CliRender, ProfileListsFramesAndPasses) {
   EXPECT_EQ(counters, 3u);
 }
 
+TEST(CliRender, ConeAoWritesAnAoChannelAndDarkensCrevices) {
+  const auto dir = ScratchDir("render_ao");
+  const std::string out = (dir / "il2.exr").string();
+  const CommandResult r = RunSoftmol("render '" + Data("il2.pdb") + "' -o '" + out +
+                                         "' --size 96x72 --ao cone --cones 5 --aov ao,id",
+                                     dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const io::ImageFile img = io::ReadExr(out);
+  const io::ImageChannel* ao = nullptr;
+  const io::ImageChannel* id = nullptr;
+  for (const auto& c : img.channels) {
+    if (c.name == "AO") ao = &c;
+    if (c.name == "id") id = &c;
+  }
+  ASSERT_TRUE(ao && id);
+  size_t dark = 0;
+  for (size_t i = 0; i < ao->values.size(); ++i) {
+    ASSERT_GE(ao->values[i], 0.0f);
+    ASSERT_LE(ao->values[i], 1.0f);
+    if (id->ids[i] == 0xFFFFFFFFu) EXPECT_EQ(ao->values[i], 1.0f) << "background is open";
+    else if (ao->values[i] < 0.7f) ++dark;
+  }
+  EXPECT_GT(dark, 10u) << "a protein surface has occluded crevices";
+  EXPECT_NE(r.out.find("cone ao"), std::string::npos) << "the pass list names the AO pass: " << r.out;
+}
+
 TEST(CliRender, EveryStyleRenders) {
   const auto dir = ScratchDir("render_styles");
   for (const char* style : {"spacefill", "balls", "licorice", "ellipsoids"}) {

@@ -1,0 +1,59 @@
+// gl/detail/passes.h — the GL passes behind gl::FrameRenderer, one file per CPU pass with the
+// same stem: gl/tile_kernel.cpp (↔ raster/tile_kernel*.cpp), gl/shading.cpp (↔ effects/shading.cpp).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "effects/shading.h"
+#include "raster/camera.h"
+#include "raster/detail/setup.h"
+#include "raster/gbuffer.h"
+#include "raster/primitives.h"
+
+namespace softmol::gl::detail {
+
+// G-buffer attachments, in fragment output order (gl/shaders/tile_kernel.frag).
+enum Attachment { kAttDepth = 0, kAttNormal, kAttBaseColor, kAttPrimitiveId, kAttSurface, kAttCount };
+
+struct GBufferTargets {
+  int width = 0, height = 0;
+  uint32_t channels = 0;  // raster::GBufferChannel bits that have a texture (| kDepth)
+  uint32_t fbo = 0;
+  uint32_t color[kAttCount] = {};  // 0 for a channel nobody asked for
+  uint32_t depthStencil = 0;  // DEPTH_COMPONENT32F renderbuffer, the depth test's own buffer
+  // (Re)allocates only the attachments of `channels`: at 4×4 SSAA of 1080p one RGBA32F plane
+  // is 530 MB, so the surface-coordinate plane must not exist when nobody reads it.
+  void Resize(int w, int h, uint32_t channels);
+  void Release();
+};
+
+struct TileKernelPass {
+  uint32_t program = 0;
+  uint32_t buffers[4] = {};  // order, spheres, cylinders, ellipsoids
+  raster::detail::SetupOutput setup;
+  std::vector<uint32_t> order;   // primitive codes, the CPU's front-to-back order
+  void Create();
+  void Release();
+  // Setup (CPU, raster/setup.cpp) and the front-to-back order; returns the visible count.
+  size_t Prepare(const raster::PrimitiveScene& scene, const raster::Camera& camera,
+                 uint32_t channels, raster::detail::FrameConstants& fc);
+  void Upload();
+  void Draw(const raster::detail::FrameConstants& fc, uint32_t channels, GBufferTargets& g);
+};
+
+void ReadBack(const GBufferTargets& g, uint32_t channels, raster::GBuffer& out);
+
+struct ShadingPass {
+  uint32_t program = 0, fbo = 0, target = 0;
+  int width = 0, height = 0;
+  void Create();
+  void Release();
+  // Shades `g` into a width/ssaa × height/ssaa RGBA32F target (linear, premultiplied).
+  void Run(const GBufferTargets& g, int ssaa, const effects::ShadingOptions& options,
+           const effects::Backdrop& backdrop);
+  // The target, top row first (RenderedFrame order).
+  void ReadBack(std::vector<float>& rgba) const;
+};
+
+}  // namespace softmol::gl::detail

@@ -1,0 +1,55 @@
+// gl/frame_renderer.h — the OpenGL 4.5 mirror of effects::RenderFrame: the same per-primitive
+// setup (raster/setup.cpp) uploaded as storage buffers, the impostor pass (GLSL twin of the
+// tile kernel, one quad per primitive in the CPU's front-to-back order, ray-cast with the
+// shared raster/shared/*.inc formulas) into a float/integer G-buffer, then deferred shading
+// fused with the supersample resolve (effects/shared/blinn_phong.inc). Mirrored passes:
+// G-buffer (depth, normal, base colour, primitive id, surface coordinates) and shading.
+// Needs a current gl::Context (gl/context_egl.h) on the calling thread.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include "effects/frame_renderer.h"
+#include "raster/camera.h"
+#include "raster/gbuffer.h"
+#include "raster/primitives.h"
+
+namespace softmol::gl {
+
+struct GlFrameStats {
+  double setupMs = 0;     // CPU setup + front-to-back sort (shared with the CPU backend)
+  double uploadMs = 0;    // storage buffers
+  double gbufferMs = 0;   // impostor pass, to glFinish
+  double shadingMs = 0;   // shading + resolve, to glFinish
+  double readbackMs = 0;  // every buffer read back
+  uint64_t primitivesDrawn = 0;
+};
+
+class FrameRenderer {
+ public:
+  // Compiles the programs; throws std::runtime_error with the driver's log on failure. The
+  // render calls throw std::runtime_error on a GL error.
+  FrameRenderer();
+  ~FrameRenderer();
+  FrameRenderer(const FrameRenderer&) = delete;
+  FrameRenderer& operator=(const FrameRenderer&) = delete;
+
+  // Twin of raster::RenderGBuffer: `out` gets the channels asked for (| kDepth), row 0 at
+  // the bottom, at camera.width × camera.height.
+  GlFrameStats RenderGBuffer(const raster::PrimitiveScene& scene, const raster::Camera& camera,
+                             uint32_t channels, raster::GBuffer& out);
+
+  // Twin of effects::RenderFrame (colour and AOVs; `passes` and timings are GL's). When
+  // `samples` is given it also receives the full-resolution G-buffer the frame was shaded from.
+  GlFrameStats RenderFrame(const raster::PrimitiveScene& scene, const raster::Camera& camera,
+                           const effects::RenderOptions& options, effects::RenderedFrame& frame,
+                           raster::GBuffer* samples = nullptr);
+
+  struct Impl;
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace softmol::gl

@@ -1,0 +1,106 @@
+// gl/program.cpp — shader text assembly and compilation (see program.h).
+#include "gl/program.h"
+
+#include <map>
+#include <stdexcept>
+
+#include "gl/gl_api.h"
+#include "gl/gl_shader_sources.h"  // generated: detail::kEmbeddedSources
+
+namespace softmol::gl {
+namespace {
+
+const std::map<std::string, std::string>& Sources() {
+  static const std::map<std::string, std::string> sources = [] {
+    std::map<std::string, std::string> m;
+    for (const detail::EmbeddedSource& s : detail::kEmbeddedSources) m[s.path] = s.text;
+    return m;
+  }();
+  return sources;
+}
+
+uint32_t Compile(GLenum type, const std::string& path, const std::string& source) {
+  const GLuint shader = glCreateShader(type);
+  const char* text = source.c_str();
+  glShaderSource(shader, 1, &text, nullptr);
+  glCompileShader(shader);
+  GLint ok = 0;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    GLint len = 0;
+    glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &len);
+    std::string log(size_t(len > 0 ? len : 1), '\0');
+    glGetShaderInfoLog(shader, len, nullptr, log.data());
+    glDeleteShader(shader);
+    throw std::runtime_error("GLSL compile error in " + path + ":\n" + log);
+  }
+  return shader;
+}
+
+}  // namespace
+
+const std::vector<std::string>& SharedFormulaFiles() {
+  static const std::vector<std::string> files = {
+      "raster/shared/quadratic.inc",     "raster/shared/attributes.inc",
+      "raster/shared/sphere_hit.inc",    "raster/shared/cylinder_hit.inc",
+      "raster/shared/ellipsoid_hit.inc", "effects/shared/blinn_phong.inc"};
+  return files;
+}
+
+const std::string& EmbeddedText(const std::string& path) {
+  const auto it = Sources().find(path);
+  if (it == Sources().end()) throw std::logic_error("shader text not embedded: " + path);
+  return it->second;
+}
+
+std::vector<std::string> EmbeddedPaths() {
+  std::vector<std::string> paths;
+  for (const auto& [path, text] : Sources()) paths.push_back(path);
+  return paths;
+}
+
+std::string StageSource(const std::string& passPath, const std::string& defines) {
+  // #line resets keep the driver's error positions meaningful per file (GLSL 4.50 #line takes
+  // a line and a source-string number; we number the files in order).
+  std::string s = EmbeddedText("gl/shaders/prelude.glsl");
+  s += "\n" + defines + "\n";
+  int fileNumber = 1;
+  for (const std::string& f : SharedFormulaFiles()) {
+    s += "#line 1 " + std::to_string(fileNumber++) + "  // " + f + "\n";
+    s += EmbeddedText(f) + "\n";
+  }
+  s += "#line 1 " + std::to_string(fileNumber) + "  // " + passPath + "\n";
+  s += EmbeddedText(passPath);
+  return s;
+}
+
+uint32_t BuildProgram(const std::string& vertexPath, const std::string& fragmentPath,
+                      const std::string& defines) {
+  const GLuint vs = Compile(GL_VERTEX_SHADER, vertexPath, StageSource(vertexPath, defines));
+  GLuint fs = 0;
+  try {
+    fs = Compile(GL_FRAGMENT_SHADER, fragmentPath, StageSource(fragmentPath, defines));
+  } catch (...) {
+    glDeleteShader(vs);
+    throw;
+  }
+  const GLuint program = glCreateProgram();
+  glAttachShader(program, vs);
+  glAttachShader(program, fs);
+  glLinkProgram(program);
+  glDeleteShader(vs);
+  glDeleteShader(fs);
+  GLint ok = 0;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    GLint len = 0;
+    glGetProgramiv(program, GL_INFO_LOG_LENGTH, &len);
+    std::string log(size_t(len > 0 ? len : 1), '\0');
+    glGetProgramInfoLog(program, len, nullptr, log.data());
+    glDeleteProgram(program);
+    throw std::runtime_error("GLSL link error (" + vertexPath + " + " + fragmentPath + "):\n" + log);
+  }
+  return program;
+}
+
+}  // namespace softmol::gl

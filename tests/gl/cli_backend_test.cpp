@@ -1,0 +1,58 @@
+// tests/gl/cli_backend_test.cpp — `softmol render --backend gl` end to end: the same command
+// with --backend cpu and --backend gl writes PNGs within one 8-bit level on >= 99.9% of the
+// channel values (issue 7's colour bound), and an unknown backend is one clear error.
+#include <cstdlib>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "gl_test_context.h"
+#include "io/image_io.h"
+#include "tests/cli/run_command.h"
+
+namespace softmol::gl {
+namespace {
+
+constexpr double kColorAgreement = 0.999;
+
+TEST(CliBackend, GlPngMatchesCpuPng) {
+  SOFTMOL_NEED_GL();
+  const auto dir = softmol::test::ScratchDir("cli_backend_gl");
+  const std::string common = std::string("render '") + SOFTMOL_DATA_DIR +
+                             "/il2.pdb' --style balls --size 240x180 --ssaa 2 --threads 2 -q -o ";
+  const auto cpuPng = dir / "cpu.png", glPng = dir / "gl.png";
+  const softmol::test::CommandResult cpu = softmol::test::RunSoftmol(common + "'" + cpuPng.string() + "'", dir);
+  ASSERT_EQ(cpu.exitCode, 0) << cpu.err;
+  const softmol::test::CommandResult gl =
+      softmol::test::RunSoftmol(common + "'" + glPng.string() + "' --backend gl", dir);
+  ASSERT_EQ(gl.exitCode, 0) << gl.err;
+  const io::Image8 a = io::ReadImage8(cpuPng.string()), b = io::ReadImage8(glPng.string());
+  ASSERT_EQ(a.width, 240);
+  ASSERT_EQ(a.width, b.width);
+  ASSERT_EQ(a.height, b.height);
+  ASSERT_EQ(a.pixels.size(), b.pixels.size());
+  size_t within = 0, equal = 0, background = 0;
+  for (size_t i = 0; i < a.pixels.size(); ++i) {
+    const int d = std::abs(int(a.pixels[i]) - int(b.pixels[i]));
+    within += d <= 1 ? 1 : 0;
+    equal += d == 0 ? 1 : 0;
+    background += a.pixels[i] == 255 ? 1 : 0;
+  }
+  std::printf("cli png: %zu of %zu channel values equal\n", equal, a.pixels.size());
+  EXPECT_LT(background, a.pixels.size() * 9 / 10) << "the molecule should cover the image";
+  EXPECT_GE(double(within) / double(a.pixels.size()), kColorAgreement);
+}
+
+TEST(CliBackend, UnknownBackendIsAnError) {
+  const auto dir = softmol::test::ScratchDir("cli_backend_bad");
+  const softmol::test::CommandResult r = softmol::test::RunSoftmol(
+      std::string("render '") + SOFTMOL_DATA_DIR + "/pept.pdb' --backend vulkan -o '" +
+          (dir / "x.png").string() + "'",
+      dir);
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.err.find("--backend"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
+}
+
+}  // namespace
+}  // namespace softmol::gl
