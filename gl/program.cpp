@@ -43,7 +43,9 @@ const std::vector<std::string>& SharedFormulaFiles() {
   static const std::vector<std::string> files = {
       "raster/shared/quadratic.inc",     "raster/shared/attributes.inc",
       "raster/shared/sphere_hit.inc",    "raster/shared/cylinder_hit.inc",
-      "raster/shared/ellipsoid_hit.inc", "effects/shared/blinn_phong.inc"};
+      "raster/shared/ellipsoid_hit.inc", "effects/shared/blinn_phong.inc",
+      // No GL pass calls these yet; they are here so the offline GLSL check compiles them.
+      "ao/shared/surface_maps.inc",      "ao/shared/cone_step.inc"};
   return files;
 }
 

@@ -82,6 +82,9 @@ void WriteExr(const std::string& path, const ImageFile& image) {
   }
   spec.attribute("compression", "zip");
   spec.attribute("oiio:ColorSpace", "Linear");
+  // OpenEXR's writer stamps the current time (capDate) unless DateTime is set; an empty one
+  // leaves it out, so the same render gives the same bytes (DESIGN.md, determinism).
+  spec.attribute("DateTime", "");
   // Every channel is 4 bytes, so the native (per-channel format) layout is 4·nc bytes a pixel.
   std::vector<uint32_t> native(n * size_t(nc));
   for (int c = 0; c < nc; ++c) {

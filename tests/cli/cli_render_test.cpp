@@ -1,7 +1,9 @@
 // tests/cli/cli_render_test.cpp — `softmol render` end to end: the image has the asked size and
 // shows the molecule on the background; the same bytes for 1 and 2 threads and from run to
 // run; EXR AOVs hold the channels DESIGN.md defines; --profile lists the passes that ran.
+#include <chrono>
 #include <cmath>
+#include <thread>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -82,6 +84,19 @@ TEST(CliRender, ExrCarriesAovChannels) {
     }
   }
   EXPECT_GT(covered, 0u);
+}
+
+TEST(CliRender, ExrIsTheSameBytesFromRunToRun) {
+  const auto dir = ScratchDir("render_exr_bytes");
+  std::string bytes[2];
+  for (int k = 0; k < 2; ++k) {
+    const std::string out = (dir / ("run" + std::to_string(k) + ".exr")).string();
+    const CommandResult r = RunSoftmol("render " + kPept + " -o '" + out + "' --size 32x24 --aov depth,id", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    bytes[k] = Slurp(out);
+    if (k == 0) std::this_thread::sleep_for(std::chrono::milliseconds(1100));  // a new timestamp second
+  }
+  EXPECT_EQ(bytes[0], bytes[1]) << "EXR files differ between runs (a timestamp in the header?)";
 }
 
 TEST(CliRender, PngWithAovsWritesSiblingExrAndTransparentAlpha) {
