@@ -15,6 +15,7 @@
 #include "ao/cone_trace.h"
 #include "ao/occupancy_pyramid.h"
 #include "io/bonds.h"
+#include "bench/bench_scenes.h"
 #include "io/structure_reader.h"
 #include "raster/frame.h"
 #include "raster/representation.h"
@@ -23,31 +24,12 @@ namespace {
 
 using namespace softmol;
 
-struct MoleculeSpec {
-  const char* name;
-  const char* file;
-  const char* assembly;
-};
-constexpr MoleculeSpec kMolecules[] = {
-    {"1tii", "1tii.pdb", ""}, {"4JSV", "4JSV.pdb", ""}, {"3J6R_asm1", "3J6R.pdb", "1"}};
-
-const raster::PrimitiveScene& Scene(int mol, int style) {
-  static std::map<std::pair<int, int>, raster::PrimitiveScene> cache;
-  auto key = std::make_pair(mol, style);
-  auto it = cache.find(key);
-  if (it != cache.end()) return it->second;
-  io::ReadOptions opt;
-  opt.assembly = kMolecules[mol].assembly;
-  io::Molecule m = io::ReadMolecule(std::string(SOFTMOL_DATA_DIR "/") + kMolecules[mol].file, opt);
-  if (style == 1 && m.bondCount() == 0) io::ComputeDistanceBonds(m);
-  raster::RepresentationOptions ro;
-  ro.style = style == 0 ? raster::Style::kSpacefill : raster::Style::kBalls;
-  return cache.emplace(key, raster::BuildRepresentation(m, ro)).first->second;
-}
+using bench::BenchScene;
+using bench::kBenchMolecules;
 
 void BM_PyramidBuild(benchmark::State& state) {
   const int mol = int(state.range(0)), style = int(state.range(1)), threads = int(state.range(2));
-  const raster::PrimitiveScene& scene = Scene(mol, style);
+  const raster::PrimitiveScene& scene = BenchScene(mol, style);
   tbb::global_control gc(tbb::global_control::max_allowed_parallelism, size_t(threads));
   ao::OccupancyPyramid pyramid;
   ao::PyramidOptions options;
@@ -56,7 +38,7 @@ void BM_PyramidBuild(benchmark::State& state) {
     ao::BuildOccupancyPyramid(scene, options, pyramid);  // every frame: no reuse
     benchmark::DoNotOptimize(pyramid.levels[0].occupancy.data());
   }
-  state.SetLabel(std::string(kMolecules[mol].name) + (style == 0 ? "/spacefill" : "/balls"));
+  state.SetLabel(std::string(kBenchMolecules[mol].name) + (style == 0 ? "/spacefill" : "/balls"));
   state.counters["primitives"] = double(scene.size());
   state.counters["voxelA"] = pyramid.levels[0].voxelSize;  // finest voxel side, Å
   state.counters["Mprim/s"] = benchmark::Counter(double(scene.size()) * 1e-6,
@@ -70,18 +52,18 @@ BENCHMARK(BM_PyramidBuild)
     ->UseRealTime();
 
 void BM_PyramidReuse(benchmark::State& state) {
-  const raster::PrimitiveScene& scene = Scene(int(state.range(0)), 0);
+  const raster::PrimitiveScene& scene = BenchScene(int(state.range(0)), 0);
   ao::OccupancyPyramid pyramid;
   ao::UpdateOccupancyPyramid(scene, {}, pyramid);
   for (auto _ : state) benchmark::DoNotOptimize(ao::UpdateOccupancyPyramid(scene, {}, pyramid));
-  state.SetLabel(kMolecules[state.range(0)].name);
+  state.SetLabel(kBenchMolecules[state.range(0)].name);
 }
 BENCHMARK(BM_PyramidReuse)->Arg(0)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // Cone AO alone (G-buffer and pyramid made once, outside the loop), 1920×1080, spacefill.
 void BM_ConeAo(benchmark::State& state) {
   const int mol = int(state.range(0)), cones = int(state.range(1)), threads = int(state.range(2));
-  const raster::PrimitiveScene& scene = Scene(mol, 0);
+  const raster::PrimitiveScene& scene = BenchScene(mol, 0);
   raster::Camera camera = raster::DefaultCamera(scene, 1920, 1080);
   raster::FitNearFar(camera, scene);
   raster::GBuffer g;
@@ -96,7 +78,7 @@ void BM_ConeAo(benchmark::State& state) {
     ao::ConeTraceAo(pyramid, camera, g, {.cones = cones}, out);
     benchmark::DoNotOptimize(out.data());
   }
-  state.SetLabel(kMolecules[mol].name);
+  state.SetLabel(kBenchMolecules[mol].name);
   state.counters["visiblePx"] = double(visible);
   state.counters["Mpx/s"] = benchmark::Counter(double(g.depth.size()) * 1e-6,
                                                benchmark::Counter::kIsIterationInvariantRate);

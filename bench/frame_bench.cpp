@@ -10,34 +10,17 @@
 #include <tbb/global_control.h>
 
 #include "effects/frame_renderer.h"
-#include "io/bonds.h"
-#include "io/structure_reader.h"
+#include "bench/bench_scenes.h"
 #include "raster/camera.h"
-#include "raster/representation.h"
 
 namespace {
 
-using softmol::raster::Style;
-
-const softmol::raster::PrimitiveScene& Scene(const std::string& file, const std::string& assembly, Style style) {
-  static std::map<std::string, softmol::raster::PrimitiveScene> cache;
-  const std::string key = file + "|" + assembly + "|" + std::to_string(int(style));
-  auto it = cache.find(key);
-  if (it == cache.end()) {
-    softmol::io::ReadOptions ro;
-    ro.assembly = assembly;
-    softmol::io::Molecule mol = softmol::io::ReadMolecule(std::string(SOFTMOL_DATA_DIR) + "/" + file, ro);
-    if (style != Style::kSpacefill) softmol::io::ComputeDistanceBonds(mol);
-    softmol::raster::RepresentationOptions rep;
-    rep.style = style;
-    it = cache.emplace(key, softmol::raster::BuildRepresentation(mol, rep)).first;
-  }
-  return it->second;
-}
+using softmol::bench::BenchScene;
 
 // Args: width, height, threads, ssaa.
-void Frame(benchmark::State& state, const char* file, const char* assembly, Style style) {
-  const auto& scene = Scene(file, assembly, style);
+// molecule: index into bench::kBenchMolecules; style: 0 spacefill, 1 balls.
+void Frame(benchmark::State& state, int molecule, int style) {
+  const auto& scene = BenchScene(molecule, style);
   const int w = int(state.range(0)), h = int(state.range(1));
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, size_t(state.range(2)));
   softmol::raster::Camera cam = softmol::raster::DefaultCamera(scene, w, h);
@@ -68,11 +51,11 @@ void Sizes(benchmark::internal::Benchmark* b) {
   b->Unit(benchmark::kMillisecond)->UseRealTime();
 }
 
-BENCHMARK_CAPTURE(Frame, 1tii_spacefill, "1tii.pdb", "", Style::kSpacefill)->Apply(Sizes);
-BENCHMARK_CAPTURE(Frame, 1tii_balls, "1tii.pdb", "", Style::kBalls)->Apply(Sizes);
-BENCHMARK_CAPTURE(Frame, 4JSV_spacefill, "4JSV.pdb", "", Style::kSpacefill)->Apply(Sizes);
-BENCHMARK_CAPTURE(Frame, 4JSV_balls, "4JSV.pdb", "", Style::kBalls)->Apply(Sizes);
-BENCHMARK_CAPTURE(Frame, 3J6R_assembly_spacefill, "3J6R.pdb", "1", Style::kSpacefill)->Apply(Sizes);
+BENCHMARK_CAPTURE(Frame, 1tii_spacefill, 0, 0)->Apply(Sizes);
+BENCHMARK_CAPTURE(Frame, 1tii_balls, 0, 1)->Apply(Sizes);
+BENCHMARK_CAPTURE(Frame, 4JSV_spacefill, 1, 0)->Apply(Sizes);
+BENCHMARK_CAPTURE(Frame, 4JSV_balls, 1, 1)->Apply(Sizes);
+BENCHMARK_CAPTURE(Frame, 3J6R_assembly_spacefill, 2, 0)->Apply(Sizes);
 
 }  // namespace
 

@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "io/bonds.h"
+#include "bench/bench_scenes.h"
 #include "io/structure_reader.h"
 #include "raster/frame.h"
 #include "raster/representation.h"
@@ -20,42 +21,16 @@ namespace {
 
 using namespace softmol;
 
-struct MoleculeSpec {
-  const char* name;
-  const char* file;
-  const char* assembly;
-};
-constexpr MoleculeSpec kMolecules[] = {
-    {"1tii", "1tii.pdb", ""}, {"4JSV", "4JSV.pdb", ""}, {"3J6R_asm1", "3J6R.pdb", "1"}};
+using bench::BenchScene;
+using bench::kBenchMolecules;
+
 constexpr const char* kStyles[] = {"spacefill", "balls"};
 constexpr std::pair<int, int> kSizes[] = {{1024, 768}, {1920, 1080}};
-
-const io::Molecule& Molecule(int index) {
-  static std::map<int, io::Molecule> cache;
-  auto it = cache.find(index);
-  if (it != cache.end()) return it->second;
-  io::ReadOptions opt;
-  opt.assembly = kMolecules[index].assembly;
-  io::Molecule mol =
-      io::ReadMolecule(std::string(SOFTMOL_DATA_DIR "/") + kMolecules[index].file, opt);
-  if (mol.bondCount() == 0) io::ComputeDistanceBonds(mol);
-  return cache.emplace(index, std::move(mol)).first->second;
-}
-
-const raster::PrimitiveScene& Scene(int mol, int style) {
-  static std::map<std::pair<int, int>, raster::PrimitiveScene> cache;
-  auto key = std::make_pair(mol, style);
-  auto it = cache.find(key);
-  if (it != cache.end()) return it->second;
-  raster::RepresentationOptions opt;
-  opt.style = style == 0 ? raster::Style::kSpacefill : raster::Style::kBalls;
-  return cache.emplace(key, raster::BuildRepresentation(Molecule(mol), opt)).first->second;
-}
 
 void BM_RasterFrame(benchmark::State& state) {
   const int mol = int(state.range(0)), style = int(state.range(1)), size = int(state.range(2));
   const int threads = int(state.range(3)), tile = int(state.range(4));
-  const raster::PrimitiveScene& scene = Scene(mol, style);
+  const raster::PrimitiveScene& scene = BenchScene(mol, style);
   raster::Camera camera = raster::DefaultCamera(scene, kSizes[size].first, kSizes[size].second);
   raster::FitNearFar(camera, scene);  // once: a fixed camera need not re-fit every frame
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
@@ -82,7 +57,7 @@ void BM_RasterFrame(benchmark::State& state) {
   state.counters["fragKept/frame"] = kept / n;
   state.counters["skippedByDepth"] = double(stats.tilesSkippedByDepth);
   state.counters["Mfrag/s"] = benchmark::Counter(frags * 1e-6, benchmark::Counter::kIsRate);
-  state.SetLabel(std::string(kMolecules[mol].name) + " " + kStyles[style] + " " +
+  state.SetLabel(std::string(kBenchMolecules[mol].name) + " " + kStyles[style] + " " +
                  std::to_string(kSizes[size].first) + "x" + std::to_string(kSizes[size].second) +
                  " threads=" + std::to_string(threads) + " tile=" + std::to_string(tile));
 }
