@@ -36,6 +36,8 @@ struct RenderArgs {
   int cones = 9;                  // --ao cone: 3, 5 or 9
   int aoRays = 256;               // --ao reference: rays per pixel
   int aoGrid = 128;               // --ao cone: finest occupancy grid resolution
+  std::string trajectory;         // render its frames instead of the topology's coordinates
+  std::string frames;             // A:B[:STEP], 0-based, inclusive; default all
   std::string backend = "cpu";  // cpu | gl (the OpenGL mirror; builds with SOFTMOL_BUILD_GL)
   double fov = 30.0;
   double ortho = 0.0;

@@ -72,4 +72,52 @@ uint32_t ParseHexColor(const std::string& text, const std::string& option) {
   return v;
 }
 
+std::vector<size_t> ParseFrameRange(const std::string& text, size_t frameCount, const std::string& option) {
+  if (frameCount == 0) throw io::InputError({option}, "the trajectory has no frames");
+  std::vector<std::string> parts;
+  size_t start = 0;
+  for (;;) {
+    const size_t colon = text.find(':', start);
+    parts.push_back(Trim(text.substr(start, colon == std::string::npos ? std::string::npos : colon - start)));
+    if (colon == std::string::npos) break;
+    start = colon + 1;
+  }
+  if (parts.size() > 3)
+    throw io::InputError({option}, "expected A:B[:STEP], got '" + text + "'");
+  int first = 0, last = int(frameCount) - 1, step = 1;
+  auto number = [&](const std::string& s, int& v) {
+    if (!s.empty() && !ParseInt(s, v))
+      throw io::InputError({option}, "'" + s + "' is not a whole number (expected A:B[:STEP])");
+  };
+  number(parts[0], first);
+  if (parts.size() == 1) last = first;  // a single frame: "7"
+  if (parts.size() >= 2) number(parts[1], last);
+  if (parts.size() == 3) number(parts[2], step);
+  if (first < 0 || last < first || step < 1)
+    throw io::InputError({option}, "expected 0 <= A <= B and STEP >= 1, got '" + text + "'");
+  if (size_t(last) >= frameCount)
+    throw io::InputError({option}, "frame " + std::to_string(last) + " is past the last frame (" +
+                                       std::to_string(frameCount - 1) + ")");
+  std::vector<size_t> frames;
+  for (int f = first; f <= last; f += step) frames.push_back(size_t(f));
+  return frames;
+}
+
+bool FormatFrameName(const std::string& pattern, size_t index, std::string& name) {
+  const size_t percent = pattern.find('%');
+  if (percent == std::string::npos) return false;
+  size_t i = percent + 1;
+  int width = 0;
+  if (i < pattern.size() && pattern[i] == '0') {
+    ++i;
+    if (i >= pattern.size() || pattern[i] < '1' || pattern[i] > '9') return false;
+    width = pattern[i++] - '0';
+  }
+  if (i >= pattern.size() || pattern[i] != 'd' || pattern.find('%', i) != std::string::npos) return false;
+  std::string digits = std::to_string(index);
+  if (int(digits.size()) < width) digits.insert(0, size_t(width) - digits.size(), '0');
+  name = pattern.substr(0, percent) + digits + pattern.substr(i + 1);
+  return true;
+}
+
 }  // namespace softmol::cli

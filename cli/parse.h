@@ -21,6 +21,14 @@ std::vector<double> ParseNumbers(const std::string& text, size_t count, const st
 // "ffffff" or "#ffffff" -> 0xRRGGBB.
 uint32_t ParseHexColor(const std::string& text, const std::string& option);
 
+// "A:B[:STEP]" (0-based, inclusive; A or B may be left out: "5:", ":20", "::10") -> the frame
+// indices, checked against `frameCount`.
+std::vector<size_t> ParseFrameRange(const std::string& text, size_t frameCount, const std::string& option);
+
+// "frame_%05d.png" with 42 -> "frame_00042.png": exactly one %d or %0Nd (N ≤ 9) in `pattern`.
+// Returns false when the pattern has none (or anything else after a %).
+bool FormatFrameName(const std::string& pattern, size_t index, std::string& name);
+
 // "a,b , c" -> {"a","b","c"} (empty items dropped).
 std::vector<std::string> SplitList(const std::string& text);
 

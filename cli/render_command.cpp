@@ -9,6 +9,8 @@
 #include <memory>
 #include <string_view>
 
+#include <unistd.h>
+
 #include <tbb/global_control.h>
 
 #include "cli/commands.h"
@@ -19,6 +21,7 @@
 #include "effects/frame_renderer.h"
 #include "io/error.h"
 #include "io/image_io.h"
+#include "io/trajectory.h"
 #include "raster/camera.h"
 #include "raster/representation.h"
 #if SOFTMOL_HAVE_GL
@@ -95,7 +98,7 @@ io::ImageFile ToExr(const effects::RenderedFrame& f, bool withColor) {
 
 void AddRenderCommand(CLI::App& app, RenderArgs& a) {
   CLI::App* c = app.add_subcommand("render", "Render a molecule to PNG or EXR");
-  c->add_option("MOLECULE", a.molecule, "PDB or mmCIF file (plain or .gz)")->required();
+  c->add_option("MOLECULE", a.molecule, "PDB or mmCIF file (plain or .gz), or a PSF topology with --trajectory")->required();
   c->add_option("-o,--output", a.output, "Output image: .png (sRGB 8-bit) or .exr (linear float + AOVs)")->capture_default_str();
   c->add_option("--size", a.size, "Image size WIDTHxHEIGHT")->capture_default_str();
   c->add_option("--style", a.style, "spacefill | balls | licorice | ellipsoids")->capture_default_str();
@@ -120,6 +123,8 @@ void AddRenderCommand(CLI::App& app, RenderArgs& a) {
   c->add_option("--profile", a.profile, "Write per-pass timings as Chrome trace-event JSON (open in Perfetto)");
   c->add_option("--repeat", a.repeat, "Render the frame N times (steady-state timings)")->capture_default_str()->check(CLI::Range(1, 100000));
   c->add_option("--tile-size", a.tileSize, "Raster tile size in pixels")->capture_default_str()->check(CLI::IsMember({8, 16, 32, 64, 128}));
+  c->add_option("--trajectory", a.trajectory, "Render frames of this trajectory (.xtc, .dcd, multi-model .pdb/.cif) on the topology MOLECULE");
+  c->add_option("--frames", a.frames, "Frames A:B[:STEP] (0-based, inclusive; default all); -o needs %d or %05d for several");
   c->add_option("--backend", a.backend, "cpu | gl (the OpenGL 4.5 mirror through EGL, surfaceless)")
       ->capture_default_str()->check(CLI::IsMember({"cpu", "gl"}));
   c->add_flag("-q,--quiet", a.quiet, "Print nothing on success");
@@ -168,7 +173,20 @@ int RunRender(const RenderArgs& a) {
   ProfileTrace trace;
   const Clock::time_point start = Clock::now();
   const bool needsBonds = style != raster::Style::kSpacefill;  // sticks, and the ellipsoids' bonds
-  LoadedMolecule loaded = LoadMolecule(a.molecule, a.assembly, "", needsBonds);
+  LoadedMolecule loaded = LoadMolecule(a.molecule, a.assembly, a.trajectory, needsBonds);
+  // Trajectory frames to render (validated before any rendering), and the output names.
+  std::unique_ptr<io::TrajectoryReader> trajectory;
+  std::vector<size_t> frameIndices;
+  if (!a.trajectory.empty()) {
+    if (a.repeat != 1) throw io::InputError({"--repeat"}, "--repeat times one frame; it does not combine with --trajectory");
+    trajectory = io::OpenTrajectory(a.trajectory, loaded.molecule.atomCount());
+    frameIndices = ParseFrameRange(a.frames.empty() ? "0:" : a.frames, trajectory->Info().frameCount, "--frames");
+    std::string name;
+    if (frameIndices.size() > 1 && !FormatFrameName(a.output, 0, name))
+      throw io::InputError({"-o"}, "several frames need a numbered output name with one %d or %0Nd, e.g. frame_%05d.png");
+  } else if (!a.frames.empty()) {
+    throw io::InputError({"--frames"}, "--frames needs --trajectory FILE");
+  }
   double t = 0;
   for (const StepTime& s : loaded.steps) {
     trace.AddComplete(s.name, "load", t, s.ms);
@@ -215,6 +233,7 @@ int RunRender(const RenderArgs& a) {
   effects::FrameResources resources;
   double frameStart = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
   double best = 1e300, sum = 0;
+  int rendered = 0;
 #if SOFTMOL_HAVE_GL
   // --backend gl: the same scene, camera and options through the GL mirror (gl/).
   std::unique_ptr<gl::Context> glContext;
@@ -232,36 +251,69 @@ int RunRender(const RenderArgs& a) {
     }
   }
 #endif
-  for (int k = 0; k < a.repeat; ++k) {
+  auto renderOnce = [&](const raster::PrimitiveScene& drawn, const raster::Camera& view) {
 #if SOFTMOL_HAVE_GL
     if (glRenderer) {
       try {
-        glRenderer->RenderFrame(scene, cam, ro, frame);
+        glRenderer->RenderFrame(drawn, view, ro, frame);
       } catch (const std::runtime_error& e) {  // a GL error (driver limit or mirror bug)
         throw io::InputError({"--backend"}, std::string("gl: ") + e.what());
       }
     } else {
-      effects::RenderFrame(scene, cam, ro, frame, &resources);
+      effects::RenderFrame(drawn, view, ro, frame, &resources);
     }
 #else
-    effects::RenderFrame(scene, cam, ro, frame, &resources);
+    effects::RenderFrame(drawn, view, ro, frame, &resources);
 #endif
-    trace.AddFrame(k, frameStart, frame);
+    trace.AddFrame(rendered++, frameStart, frame);
     frameStart += frame.totalMs;
     best = std::min(best, frame.totalMs);
     sum += frame.totalMs;
-  }
+  };
+  auto writeOutputs = [&](const std::string& path) {
+    const Clock::time_point w0 = Clock::now();
+    if (kind == OutputKind::kPng) {
+      io::WritePng(path, frame.width, frame.height, a.transparent ? 4 : 3,
+                   effects::EncodeSrgb8(frame, a.transparent));
+      if (aovs != 0) io::WriteExr(SiblingAovPath(path), ToExr(frame, /*withColor=*/false));
+    } else {
+      io::WriteExr(path, ToExr(frame, /*withColor=*/true));
+    }
+    const double ms = std::chrono::duration<double, std::milli>(Clock::now() - w0).count();
+    trace.AddComplete("write", "output", frameStart, ms);
+    frameStart += ms;
+  };
 
-  t0 = Clock::now();
-  if (kind == OutputKind::kPng) {
-    io::WritePng(a.output, frame.width, frame.height, a.transparent ? 4 : 3,
-                 effects::EncodeSrgb8(frame, a.transparent));
-    if (aovs != 0) io::WriteExr(SiblingAovPath(a.output), ToExr(frame, /*withColor=*/false));
+  if (!trajectory) {
+    for (int k = 0; k < a.repeat; ++k) renderOnce(scene, cam);
+    writeOutputs(a.output);
   } else {
-    io::WriteExr(a.output, ToExr(frame, /*withColor=*/true));
+    // The camera stays where the topology framed it, so the molecule moves in a fixed view;
+    // only near/far follow each frame (unless given). Bonds come from the topology.
+    const bool progress = !a.quiet && isatty(STDERR_FILENO);
+    io::TrajectoryFrame coordinates;
+    raster::PrimitiveScene moving;
+    for (size_t k = 0; k < frameIndices.size(); ++k) {
+      trajectory->Seek(frameIndices[k]);
+      if (!trajectory->Next(coordinates))
+        throw io::InputError({a.trajectory, 0, 0, "frame " + std::to_string(frameIndices[k])}, "frame is missing");
+      io::ApplyFrame(coordinates, loaded.molecule);
+      moving = raster::BuildRepresentation(loaded.molecule, rep);
+      raster::Camera view = cam;
+      raster::FitNearFar(view, moving);
+      if (a.nearPlane > 0) view.nearPlane = a.nearPlane;
+      if (a.farPlane > 0) view.farPlane = a.farPlane;
+      if (view.farPlane <= view.nearPlane)
+        throw io::InputError({"--far"}, "the far plane must be beyond the near plane");
+      renderOnce(moving, view);
+      std::string name = a.output;
+      FormatFrameName(a.output, frameIndices[k], name);  // keeps a plain name for a single frame
+      writeOutputs(name);
+      if (progress)
+        std::fprintf(stderr, "\rframe %zu (%zu of %zu)   ", frameIndices[k], k + 1, frameIndices.size());
+    }
+    if (progress) std::fprintf(stderr, "\n");
   }
-  trace.AddComplete("write", "output", frameStart,
-                    std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
   if (!a.profile.empty()) trace.Write(a.profile);
 
   if (!a.quiet) {
@@ -270,9 +322,10 @@ int RunRender(const RenderArgs& a) {
                 scene.cylinders.radius.size(), scene.ellipsoids.color.size(), a.output.c_str(),
                 frame.width, frame.height);
     if (a.ssaa > 1) std::printf(", ssaa %d", a.ssaa);
+    if (trajectory) std::printf(", %zu trajectory frames", frameIndices.size());
     std::printf(")\n");
     std::printf("frame: %.2f ms", frame.totalMs);
-    if (a.repeat > 1) std::printf(" (best of %d: %.2f ms, mean %.2f ms)", a.repeat, best, sum / a.repeat);
+    if (rendered > 1) std::printf(" (best of %d: %.2f ms, mean %.2f ms)", rendered, best, sum / rendered);
     std::printf(" [");
     for (size_t i = 0; i < frame.passes.size(); ++i)
       std::printf("%s%s %.2f", i ? ", " : "", frame.passes[i].name.c_str(), frame.passes[i].durationMs);

@@ -61,6 +61,12 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"bad_ssaa", "render " + kPept + " -o %O --ssaa 9", "--ssaa"},
         BadCase{"bad_ao", "render " + kPept + " -o %O --ao sometimes", "--ao"},
         BadCase{"ao_on_gl_backend", "render " + kPept + " -o %O --backend gl --ao cone", "--"},
+        BadCase{"frames_without_trajectory", "render " + kPept + " -o %O --frames 0:3", "--frames"},
+        BadCase{"frames_past_the_end", "render '" + Data("md.pdb") + "' --trajectory '" + Data("md.xtc") +
+                                           "' --frames 0:999 -o %D/f%d.png", "--frames"},
+        BadCase{"frames_unnumbered_output", "render '" + Data("md.pdb") + "' --trajectory '" + Data("md.xtc") +
+                                                "' --frames 0:3 -o %O", "-o"},
+        BadCase{"trajectory_atom_count", "render " + kPept + " --trajectory '" + Data("md.xtc") + "' -o %O", "md.xtc"},
         BadCase{"bad_cones", "render " + kPept + " -o %O --ao cone --cones 4", "--cones"},
         BadCase{"unknown_assembly", "render " + kPept + " -o %O --assembly 42", "42"},
         BadCase{"near_beyond_far", "render " + kPept + " -o %O --near 50 --far 10", "--far"},

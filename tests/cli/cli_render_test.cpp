@@ -158,6 +158,36 @@ TEST(CliRender, ConeAoWritesAnAoChannelAndDarkensCrevices) {
   EXPECT_NE(r.out.find("cone ao"), std::string::npos) << "the pass list names the AO pass: " << r.out;
 }
 
+TEST(CliRender, TrajectoryFramesBecomeNumberedImagesThatMove) {
+  const auto dir = ScratchDir("render_traj");
+  const std::string pattern = (dir / "md_%03d.png").string();
+  const CommandResult r = RunSoftmol("render '" + Data("md.pdb") + "' --trajectory '" + Data("md.xtc") +
+                                         "' --frames 0:20:10 -o '" + pattern + "' --size 64x48 --ao cone",
+                                     dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  std::string bytes[3];
+  for (int k = 0; k < 3; ++k) {
+    const auto file = dir / ("md_0" + std::to_string(k) + "0.png");
+    ASSERT_TRUE(std::filesystem::exists(file)) << file;
+    bytes[k] = Slurp(file);
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "md_001.png")) << "STEP 10 skips frame 1";
+  EXPECT_NE(bytes[0], bytes[1]) << "the molecule moves between frames 0 and 10";
+  EXPECT_NE(bytes[1], bytes[2]);
+  // The occupancy pyramid is rebuilt for every frame (the atoms moved), never reused.
+  EXPECT_EQ(r.out.find("reused"), std::string::npos) << r.out;
+}
+
+TEST(CliRender, PsfTopologyWithDcdFrames) {
+  const auto dir = ScratchDir("render_dcd");
+  const std::string out = (dir / "ala.png").string();
+  const CommandResult r = RunSoftmol("render '" + Data("ala3.psf") + "' --trajectory '" + Data("ala3.dcd") +
+                                         "' --frames 1 -o '" + out + "' --size 64x48 --style balls",
+                                     dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(out)) << "a single frame keeps the plain output name";
+}
+
 TEST(CliRender, EveryStyleRenders) {
   const auto dir = ScratchDir("render_styles");
   for (const char* style : {"spacefill", "balls", "licorice", "ellipsoids"}) {
