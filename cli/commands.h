@@ -38,6 +38,10 @@ struct RenderArgs {
   int aoGrid = 128;               // --ao cone: finest occupancy grid resolution
   std::string trajectory;         // render its frames instead of the topology's coordinates
   std::string frames;             // A:B[:STEP], 0-based, inclusive; default all
+  std::string highlight;          // selection to surround with a halo (Hermosilla §6.1)
+  std::string haloColor = "ffcc00";  // RRGGBB sRGB
+  double haloStrength = 0.8;      // peak halo opacity, [0, 1]
+  double haloTrail = 0.0;         // temporal halos: trail duration, ps of simulation time
   std::string backend = "cpu";  // cpu | gl (the OpenGL mirror; builds with SOFTMOL_BUILD_GL)
   double fov = 30.0;
   double ortho = 0.0;

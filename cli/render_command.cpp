@@ -6,7 +6,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <algorithm>
 #include <memory>
+#include <optional>
 #include <string_view>
 
 #include <unistd.h>
@@ -21,6 +23,7 @@
 #include "effects/frame_renderer.h"
 #include "io/error.h"
 #include "io/image_io.h"
+#include "io/selection.h"
 #include "io/trajectory.h"
 #include "raster/camera.h"
 #include "raster/representation.h"
@@ -125,6 +128,10 @@ void AddRenderCommand(CLI::App& app, RenderArgs& a) {
   c->add_option("--tile-size", a.tileSize, "Raster tile size in pixels")->capture_default_str()->check(CLI::IsMember({8, 16, 32, 64, 128}));
   c->add_option("--trajectory", a.trajectory, "Render frames of this trajectory (.xtc, .dcd, multi-model .pdb/.cif) on the topology MOLECULE");
   c->add_option("--frames", a.frames, "Frames A:B[:STEP] (0-based, inclusive; default all); -o needs %d or %05d for several");
+  c->add_option("--highlight", a.highlight, "Surround this selection (e.g. ligand, \"resn RET\", chain B) with an object-space halo");
+  c->add_option("--halo-color", a.haloColor, "Halo colour RRGGBB (sRGB hex)")->capture_default_str();
+  c->add_option("--halo-strength", a.haloStrength, "Peak halo opacity")->capture_default_str()->check(CLI::Range(0.0, 1.0));
+  c->add_option("--halo-trail", a.haloTrail, "Temporal halo: the highlight leaves a wake lasting this many ps of simulation time (needs --trajectory; 1 ps per frame when the trajectory has no time step)")->check(CLI::PositiveNumber);
   c->add_option("--backend", a.backend, "cpu | gl (the OpenGL 4.5 mirror through EGL, surfaceless)")
       ->capture_default_str()->check(CLI::IsMember({"cpu", "gl"}));
   c->add_flag("-q,--quiet", a.quiet, "Print nothing on success");
@@ -145,6 +152,21 @@ int RunRender(const RenderArgs& a) {
     throw io::InputError({"--ao"}, "ambient occlusion is not mirrored in the GL backend yet (use --backend cpu)");
   if (a.backend == "gl" && (aovs & effects::kAovAo))
     throw io::InputError({"--aov"}, "the AO output is not mirrored in the GL backend yet (use --backend cpu)");
+  if (a.backend == "gl" && !a.highlight.empty())
+    throw io::InputError({"--highlight"}, "halos are not mirrored in the GL backend yet (use --backend cpu)");
+  if (a.haloTrail > 0 && a.trajectory.empty())
+    throw io::InputError({"--halo-trail"}, "--halo-trail needs --trajectory FILE (a trail follows the selection across frames)");
+  if (a.haloTrail > 0 && a.highlight.empty())
+    throw io::InputError({"--halo-trail"}, "--halo-trail needs --highlight SELECTION");
+  std::optional<io::Selection> highlight;
+  if (!a.highlight.empty()) {
+    try {
+      highlight = io::ParseSelection(a.highlight);
+    } catch (const io::InputError& e) {
+      throw io::InputError({"--highlight", 0, e.where().column}, e.message());
+    }
+  }
+  const uint32_t haloRgb = ParseHexColor(a.haloColor, "--halo-color");
   effects::RenderOptions ro;
   ro.ssaa = a.ssaa;
   ro.transparent = a.transparent;
@@ -201,6 +223,18 @@ int RunRender(const RenderArgs& a) {
   trace.AddComplete("representation", "load", t, repMs);
   if (scene.size() == 0)
     throw io::InputError({a.molecule}, "nothing to draw in style '" + a.style + "'");
+  if (highlight) {
+    // Halos need the selection's spheres: the per-atom styles draw sphere i for atom i.
+    if (scene.spheres.size() != loaded.molecule.atomCount())
+      throw io::InputError({"--highlight"}, "halos need one sphere per atom (styles spacefill, balls, licorice), not '" + a.style + "'");
+    ro.highlight.spheres = io::Evaluate(*highlight, loaded.molecule);
+    if (std::none_of(ro.highlight.spheres.begin(), ro.highlight.spheres.end(), [](uint8_t b) { return b != 0; }))
+      throw io::InputError({"--highlight"}, "selection '" + a.highlight + "' matches no atom");
+    const effects::LinearRgb c = effects::UnpackSrgb(haloRgb);
+    ro.highlight.color = glm::vec3(c.r, c.g, c.b);
+    ro.highlight.strength = float(a.haloStrength);
+    ro.highlight.trail = a.haloTrail;
+  }
 
   raster::Camera cam = raster::DefaultCamera(scene, size.width, size.height);
   if (!a.camera.empty()) {
@@ -305,6 +339,12 @@ int RunRender(const RenderArgs& a) {
       if (a.farPlane > 0) view.farPlane = a.farPlane;
       if (view.farPlane <= view.nearPlane)
         throw io::InputError({"--far"}, "the far plane must be beyond the near plane");
+      if (ro.highlight.trail > 0) {
+        // Δt of §6.2: the simulation time between this frame and the last one rendered. A
+        // trajectory without a time step (multi-model PDB) counts one ps per frame.
+        const double stepPs = trajectory->Info().timeStepPs > 0 ? trajectory->Info().timeStepPs : 1.0;
+        ro.highlight.frameDelta = k == 0 ? 0.0 : stepPs * double(frameIndices[k] - frameIndices[k - 1]);
+      }
       renderOnce(moving, view);
       std::string name = a.output;
       FormatFrameName(a.output, frameIndices[k], name);  // keeps a plain name for a single frame

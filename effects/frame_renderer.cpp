@@ -1,5 +1,6 @@
 #include "effects/frame_renderer.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include <tbb/parallel_for.h>
@@ -44,6 +45,11 @@ void ResolveAovs(const raster::GBuffer& g, const std::vector<float>& ao, const R
   });
 }
 
+bool HighlightWanted(const RenderOptions& o) {
+  return std::any_of(o.highlight.spheres.begin(), o.highlight.spheres.end(),
+                     [](uint8_t b) { return b != 0; });
+}
+
 }  // namespace
 
 uint32_t RequiredChannels(const RenderOptions& o) {
@@ -54,6 +60,7 @@ uint32_t RequiredChannels(const RenderOptions& o) {
   // AO is computed where it is seen: it needs the surface (depth, normal) of each sample.
   const bool aoWanted = o.ao != AoMode::kNone && (o.color || (o.aovs & kAovAo));
   if (aoWanted) ch |= raster::kNormal | raster::kPrimitiveId;
+  if (o.color && HighlightWanted(o)) ch |= raster::kPrimitiveId;  // the selection's own samples
   return ch;
 }
 
@@ -117,6 +124,30 @@ void RenderFrame(const raster::PrimitiveScene& scene, const raster::Camera& came
     ShadeAndResolve(g, o.ssaa, o.shading, Backdrop{o.background, o.transparent}, ao, f.rgba);
     t2 = Clock::now();
     f.passes.push_back({"shading", MsBetween(t0, tAo), MsBetween(tAo, t2)});
+    if (HighlightWanted(o)) {
+      // §6.1: the selection's pyramid (same options as the AO one, its own box), resampled into
+      // the halo volume; with a trail (§6.2) the volume decays instead of being rebuilt.
+      SelectSpheres(scene, o.highlight.spheres, res.haloScene);
+      if (res.haloScene.spheres.size() == 0) {
+        res.haloVolume.valid = false;  // nothing selected is drawable: nothing to march
+      } else {
+        ao::UpdateOccupancyPyramid(res.haloScene, o.pyramid, res.haloPyramid);
+        UpdateHaloVolume(res.haloPyramid, o.highlight, scene.Bounds(), res.haloVolume);
+      }
+      const Clock::time_point tP = Clock::now();
+      f.passes.push_back({"halo pyramid", MsBetween(t0, t2), MsBetween(t2, tP)});
+      // The halo of every G-buffer sample, composited over the resolved pixels with the
+      // resolve's box weights (the "over" of a per-pixel mean opacity equals the mean of the
+      // per-sample "over"s, since both are linear in h).
+      if (res.haloVolume.valid) {
+        res.halo.resize(size_t(g.width) * size_t(g.height));
+        TraceHalos(res.haloVolume, cam, g, o.highlight, res.halo);
+        CompositeHalos(res.halo, g.width, o.ssaa, f.width, f.height, o.highlight.color, f.rgba);
+      }
+      const Clock::time_point tH = Clock::now();
+      f.passes.push_back({"halos", MsBetween(t0, tP), MsBetween(tP, tH)});
+      t2 = tH;
+    }
   }
 
   if (!o.color) f.rgba.clear();

@@ -1,6 +1,7 @@
 // effects/frame_renderer.h — one frame from primitives to pixels: builds the pass list the
 // options call for (G-buffer with only the channels someone reads, deferred shading fused
-// with the supersample resolve, AOV extraction), runs it and times each pass. The CLI, the benchmarks and the golden
+// with the supersample resolve, halos around a highlighted selection composited over the
+// resolved pixels, AOV extraction), runs it and times each pass. The CLI, the benchmarks and the golden
 // tests all render through here, so they exercise the same passes.
 #pragma once
 
@@ -13,6 +14,7 @@
 #include "ao/cone_trace.h"
 #include "ao/occupancy_pyramid.h"
 #include "ao/reference_ao.h"
+#include "effects/object_halos.h"
 #include "effects/shading.h"
 #include "raster/camera.h"
 #include "raster/frame.h"
@@ -42,6 +44,9 @@ struct RenderOptions {
   ao::PyramidOptions pyramid;     // kCone
   ao::ConeAoOptions cone;         // kCone
   ao::ReferenceAoOptions reference;  // kReference
+  // Object-space / temporal halos around a selection (Hermosilla et al. §6): runs the passes
+  // "halo pyramid" and "halos" when highlight.spheres selects something and colour is wanted.
+  HighlightOptions highlight;
 };
 
 struct PassTiming {
@@ -69,6 +74,12 @@ struct FrameResources {
   raster::GBuffer gbuffer;
   ao::OccupancyPyramid pyramid;  // rebuilt only when the scene moved
   std::vector<float> ao;         // one accessibility per G-buffer sample
+  // Halos: the selection's own scene and pyramid, the halo volume (kept between frames: with
+  // a trail it decays instead of being rebuilt) and one halo opacity per G-buffer sample.
+  raster::PrimitiveScene haloScene;
+  ao::OccupancyPyramid haloPyramid;
+  HaloVolume haloVolume;
+  std::vector<float> halo;
 };
 
 // The G-buffer channels the options need (what "only what the scene calls for" means here).

@@ -178,6 +178,52 @@ TEST(CliRender, TrajectoryFramesBecomeNumberedImagesThatMove) {
   EXPECT_EQ(r.out.find("reused"), std::string::npos) << r.out;
 }
 
+TEST(CliRender, HighlightDrawsAHaloAroundTheLigand) {
+  const auto dir = ScratchDir("render_highlight");
+  const std::string common = "render '" + Data("3sn6.pdb") + "' --size 200x150 --rotate 0,180,0 -o '";
+  const std::string plainPath = (dir / "plain.png").string(), haloPath = (dir / "halo.png").string();
+  const CommandResult plain = RunSoftmol(common + plainPath + "'", dir);
+  ASSERT_EQ(plain.exitCode, 0) << plain.err;
+  const CommandResult halo = RunSoftmol(common + haloPath + "' --highlight ligand --halo-color ff0000", dir);
+  ASSERT_EQ(halo.exitCode, 0) << halo.err;
+  EXPECT_EQ(plain.out.find("halo"), std::string::npos) << plain.out;
+  EXPECT_NE(halo.out.find("halo pyramid"), std::string::npos) << halo.out;
+  EXPECT_NE(halo.out.find("halos"), std::string::npos) << halo.out;
+  const io::Image8 a = io::ReadImage8(plainPath), b = io::ReadImage8(haloPath);
+  ASSERT_EQ(a.pixels.size(), b.pixels.size());
+  size_t changed = 0, towardRed = 0;
+  for (size_t i = 0; i < a.pixels.size(); i += 3) {
+    if (a.pixels[i] == b.pixels[i] && a.pixels[i + 1] == b.pixels[i + 1] && a.pixels[i + 2] == b.pixels[i + 2]) continue;
+    ++changed;
+    // A red veil over the image: red never drops, green and blue never rise.
+    if (b.pixels[i] >= a.pixels[i] && b.pixels[i + 1] <= a.pixels[i + 1] && b.pixels[i + 2] <= a.pixels[i + 2]) ++towardRed;
+  }
+  EXPECT_GT(changed, 10u) << "the halo changes the image";
+  EXPECT_LT(changed, a.pixels.size() / 3 / 4) << "only around the ligand";
+  EXPECT_EQ(towardRed, changed);
+}
+
+TEST(CliRender, HaloTrailLeavesAWakeAcrossFrames) {
+  // The same frames with a trail far longer than the run and one shorter than a frame step:
+  // the first frame has no history, so it is the same; later ones keep the wake of the
+  // earlier positions only with the long trail.
+  const auto dir = ScratchDir("render_trail");
+  std::string bytes[2][3];
+  const char* trail[2] = {"1e6", "1e-6"};
+  for (int t = 0; t < 2; ++t) {
+    const std::string pattern = (dir / (std::string(t ? "short" : "long") + "_%03d.png")).string();
+    const CommandResult r = RunSoftmol("render '" + Data("md.pdb") + "' --trajectory '" + Data("md.xtc") +
+                                           "' --frames 0:20:10 --highlight ion --halo-trail " + trail[t] +
+                                           " -o '" + pattern + "' --size 100x75",
+                                       dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    for (int k = 0; k < 3; ++k)
+      bytes[t][k] = Slurp(dir / ((t ? "short_0" : "long_0") + std::to_string(k) + "0.png"));
+  }
+  EXPECT_EQ(bytes[0][0], bytes[1][0]);
+  EXPECT_NE(bytes[0][2], bytes[1][2]) << "the long trail keeps a wake";
+}
+
 TEST(CliRender, PsfTopologyWithDcdFrames) {
   const auto dir = ScratchDir("render_dcd");
   const std::string out = (dir / "ala.png").string();
