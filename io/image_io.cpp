@@ -19,7 +19,11 @@ namespace fs = std::filesystem;
 // extension, because OpenImageIO picks the format from it.
 std::string TemporaryPath(const std::string& path) {
   fs::path p(path);
-  return (p.parent_path() / ("." + p.stem().string() + ".tmp" + p.extension().string())).string();
+  std::string name = ".";  // appended piece by piece: GCC 12 misreports "." + std::string (-Wrestrict)
+  name += p.stem().string();
+  name += ".tmp";
+  name += p.extension().string();
+  return (p.parent_path() / name).string();
 }
 
 void Commit(const std::string& tmp, const std::string& path) {
