@@ -77,7 +77,9 @@ TEST(FrameRenderer, SupersampleResolveAveragesCoverage) {
     else if (a > 0.0f) ++partial;
     for (int c = 0; c < 4; ++c) ASSERT_TRUE(std::isfinite(f.rgba[4 * size_t(i) + size_t(c)]));
     // Premultiplied: no channel exceeds alpha by more than the specular headroom.
-    if (a == 0.0f) EXPECT_EQ(f.rgba[4 * size_t(i)], 0.0f);
+    if (a == 0.0f) {
+      EXPECT_EQ(f.rgba[4 * size_t(i)], 0.0f);
+    }
   }
   EXPECT_GT(full, 100u);
   EXPECT_GT(partial, 20u) << "an anti-aliased silhouette has partially covered pixels";
