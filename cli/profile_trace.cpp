@@ -45,7 +45,10 @@ void ProfileTrace::Write(const std::string& path) const {
   const nlohmann::json doc = {{"traceEvents", events_}, {"displayTimeUnit", "ms"}};
   namespace fs = std::filesystem;
   const fs::path p(path);
-  const fs::path tmp = p.parent_path() / ("." + p.filename().string() + ".tmp");
+  // Built piece by piece: GCC 12 misreports "." + std::string under -Wrestrict.
+  fs::path tmp = p.parent_path() / ".";
+  tmp += p.filename();
+  tmp += ".tmp";
   {
     std::ofstream out(tmp);
     out << doc.dump(1) << '\n';

@@ -41,7 +41,10 @@ TEST(CliRender, SameBytesForOneAndTwoThreadsAndAcrossRuns) {
   std::string bytes[3];
   const char* threads[3] = {"1", "2", "2"};
   for (int k = 0; k < 3; ++k) {
-    const std::string out = (dir / ("t" + std::to_string(k) + ".png")).string();
+    std::string name = "t";  // appended piece by piece: GCC 12 misreports "t" + std::string (-Wrestrict)
+    name += std::to_string(k);
+    name += ".png";
+    const std::string out = (dir / name).string();
     const CommandResult r = RunSoftmol("render '" + Data("il2.pdb") + "' -o '" + out +
                                            "' --size 200x150 --style balls --ssaa 2 --threads " + threads[k],
                                        dir);
