@@ -14,7 +14,7 @@
 namespace softmol::test {
 namespace {
 
-const std::string kPept = "'" + Data("pept.pdb") + "'";
+const std::string kPept = std::string("'") + Data("pept.pdb") + "'";
 
 TEST(CliRender, PngHasSizeBackgroundAndMolecule) {
   const auto dir = ScratchDir("render_png");
