@@ -27,6 +27,8 @@ void GBuffer::Resize(int w, int h, uint32_t ch) {
   Plane(surfaceU, channels & kSurfaceCoord, n);
   Plane(surfaceV, channels & kSurfaceCoord, n);
   Plane(surfaceW, channels & kSurfaceCoord, n);
+  Plane(line, channels & kLine, n);
+  Plane(capped, channels & kCapped, n);
 }
 
 }  // namespace softmol::raster

@@ -17,6 +17,12 @@ enum GBufferChannel : uint32_t {
   // Spheres: world-space unit normal (u,v,w). Cylinders: u = axial position in [0,1] from
   // end 0, (v,w) = normal in the cylinder's own world-space frame (cos, sin of the angle).
   kSurfaceCoord = 16,
+  // Contour lines (Tarini et al. 2006 §5.1): the weight of the line colour at the sample, in
+  // [0,1]; 0 on the surface proper and on background.
+  kLine = 32,
+  // Near-plane capping (Tarini et al. 2006 §5.3): 1 where the sample lies on the flat cap of a
+  // primitive cut by the near plane, else 0.
+  kCapped = 64,
 };
 inline constexpr uint32_t kNoPrimitive = 0xFFFFFFFFu;
 
@@ -28,6 +34,8 @@ struct GBuffer {
   std::vector<uint32_t> baseColor;
   std::vector<uint32_t> primitiveId;
   std::vector<float> surfaceU, surfaceV, surfaceW;
+  std::vector<float> line;
+  std::vector<float> capped;
 
   // Sizes the planes of `channels` (| kDepth) and frees the others; keeps capacity when
   // called again with the same size, so a frame loop does not allocate.
