@@ -22,7 +22,8 @@ void AddInfoCommand(CLI::App& app, InfoArgs& args);
 int RunInfo(const InfoArgs& args);
 
 struct RenderArgs {
-  std::string molecule;
+  std::string molecule;     // the argument, or the scene's "molecule"
+  std::string scene;        // --scene scene.json (cli/scene_options.h); flags override it
   std::string output = "softmol.png";
   std::string size = "1024x768";
   std::string style = "spacefill";
@@ -39,9 +40,9 @@ struct RenderArgs {
   std::string trajectory;         // render its frames instead of the topology's coordinates
   std::string frames;             // A:B[:STEP], 0-based, inclusive; default all
   std::string highlight;          // selection to surround with a halo (Hermosilla §6.1)
-  std::string haloColor = "ffcc00";  // RRGGBB sRGB
-  double haloStrength = 0.8;      // peak halo opacity, [0, 1]
-  double haloTrail = 0.0;         // temporal halos: trail duration, ps of simulation time
+  std::string highlightColor = "ffcc00";  // RRGGBB sRGB
+  double highlightStrength = 0.8;      // peak halo opacity, [0, 1]
+  double highlightTrail = 0.0;         // temporal halos: trail duration, ps of simulation time
   std::string backend = "cpu";  // cpu | gl (the OpenGL mirror; builds with SOFTMOL_BUILD_GL)
   double fov = 30.0;
   double ortho = 0.0;
@@ -54,7 +55,8 @@ struct RenderArgs {
   bool transparent = false;
   bool quiet = false;
 };
-void AddRenderCommand(CLI::App& app, RenderArgs& args);
+// Returns the subcommand, for ApplySceneFile after parsing.
+CLI::App* AddRenderCommand(CLI::App& app, RenderArgs& args);
 int RunRender(const RenderArgs& args);
 
 }  // namespace softmol::cli

@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/commands.h"
+#include "cli/scene_options.h"
 #include "io/error.h"
 
 int main(int argc, char** argv) {
@@ -17,7 +18,7 @@ int main(int argc, char** argv) {
   softmol::cli::InfoArgs info;
   softmol::cli::RenderArgs render;
   softmol::cli::AddInfoCommand(app, info);
-  softmol::cli::AddRenderCommand(app, render);
+  CLI::App* renderCommand = softmol::cli::AddRenderCommand(app, render);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -25,7 +26,10 @@ int main(int argc, char** argv) {
   }
   try {
     if (app.got_subcommand("info")) return softmol::cli::RunInfo(info);
-    if (app.got_subcommand("render")) return softmol::cli::RunRender(render);
+    if (app.got_subcommand("render")) {
+      if (!render.scene.empty()) softmol::cli::ApplySceneFile(*renderCommand, render.scene);
+      return softmol::cli::RunRender(render);
+    }
     return 1;
   } catch (const softmol::io::InputError& e) {
     std::fprintf(stderr, "softmol: %s\n", e.what());

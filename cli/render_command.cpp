@@ -99,9 +99,10 @@ io::ImageFile ToExr(const effects::RenderedFrame& f, bool withColor) {
 
 }  // namespace
 
-void AddRenderCommand(CLI::App& app, RenderArgs& a) {
+CLI::App* AddRenderCommand(CLI::App& app, RenderArgs& a) {
   CLI::App* c = app.add_subcommand("render", "Render a molecule to PNG or EXR");
-  c->add_option("MOLECULE", a.molecule, "PDB or mmCIF file (plain or .gz), or a PSF topology with --trajectory")->required();
+  c->add_option("MOLECULE", a.molecule, "PDB or mmCIF file (plain or .gz), or a PSF topology with --trajectory (or the scene's \"molecule\")");
+  c->add_option("--scene", a.scene, "Scene file (JSON): any option below as {\"name\": value}; flags given here override it")->check(CLI::ExistingFile);
   c->add_option("-o,--output", a.output, "Output image: .png (sRGB 8-bit) or .exr (linear float + AOVs)")->capture_default_str();
   c->add_option("--size", a.size, "Image size WIDTHxHEIGHT")->capture_default_str();
   c->add_option("--style", a.style, "spacefill | balls | licorice | ellipsoids")->capture_default_str();
@@ -129,16 +130,19 @@ void AddRenderCommand(CLI::App& app, RenderArgs& a) {
   c->add_option("--trajectory", a.trajectory, "Render frames of this trajectory (.xtc, .dcd, multi-model .pdb/.cif) on the topology MOLECULE");
   c->add_option("--frames", a.frames, "Frames A:B[:STEP] (0-based, inclusive; default all); -o needs %d or %05d for several");
   c->add_option("--highlight", a.highlight, "Surround this selection (e.g. ligand, \"resn RET\", chain B) with an object-space halo");
-  c->add_option("--halo-color", a.haloColor, "Halo colour RRGGBB (sRGB hex)")->capture_default_str();
-  c->add_option("--halo-strength", a.haloStrength, "Peak halo opacity")->capture_default_str()->check(CLI::Range(0.0, 1.0));
-  c->add_option("--halo-trail", a.haloTrail, "Temporal halo: the highlight leaves a wake lasting this many ps of simulation time (needs --trajectory; 1 ps per frame when the trajectory has no time step)")->check(CLI::PositiveNumber);
+  c->add_option("--highlight-color", a.highlightColor, "Highlight halo colour RRGGBB (sRGB hex)")->capture_default_str();
+  c->add_option("--highlight-strength", a.highlightStrength, "Peak opacity of the highlight halo")->capture_default_str()->check(CLI::Range(0.0, 1.0));
+  c->add_option("--highlight-trail", a.highlightTrail, "Temporal halo: the highlight leaves a wake lasting this many ps of simulation time (needs --trajectory; 1 ps per frame when the trajectory has no time step)")->check(CLI::PositiveNumber);
   c->add_option("--backend", a.backend, "cpu | gl (the OpenGL 4.5 mirror through EGL, surfaceless)")
       ->capture_default_str()->check(CLI::IsMember({"cpu", "gl"}));
   c->add_flag("-q,--quiet", a.quiet, "Print nothing on success");
+  return c;
 }
 
 int RunRender(const RenderArgs& a) {
   // Validate every option before any work, so a typo costs nothing and writes nothing.
+  if (a.molecule.empty())
+    throw io::InputError({"MOLECULE"}, "no molecule: give a file, or \"molecule\" in the --scene file");
   const OutputKind kind = OutputKindOf(a.output);
   const ImageSize size = ParseSize(a.size, "--size");
   const raster::Style style = ParseStyle(a.style);
@@ -154,10 +158,10 @@ int RunRender(const RenderArgs& a) {
     throw io::InputError({"--aov"}, "the AO output is not mirrored in the GL backend yet (use --backend cpu)");
   if (a.backend == "gl" && !a.highlight.empty())
     throw io::InputError({"--highlight"}, "halos are not mirrored in the GL backend yet (use --backend cpu)");
-  if (a.haloTrail > 0 && a.trajectory.empty())
-    throw io::InputError({"--halo-trail"}, "--halo-trail needs --trajectory FILE (a trail follows the selection across frames)");
-  if (a.haloTrail > 0 && a.highlight.empty())
-    throw io::InputError({"--halo-trail"}, "--halo-trail needs --highlight SELECTION");
+  if (a.highlightTrail > 0 && a.trajectory.empty())
+    throw io::InputError({"--highlight-trail"}, "--highlight-trail needs --trajectory FILE (a trail follows the selection across frames)");
+  if (a.highlightTrail > 0 && a.highlight.empty())
+    throw io::InputError({"--highlight-trail"}, "--highlight-trail needs --highlight SELECTION");
   std::optional<io::Selection> highlight;
   if (!a.highlight.empty()) {
     try {
@@ -166,7 +170,7 @@ int RunRender(const RenderArgs& a) {
       throw io::InputError({"--highlight", 0, e.where().column}, e.message());
     }
   }
-  const uint32_t haloRgb = ParseHexColor(a.haloColor, "--halo-color");
+  const uint32_t haloRgb = ParseHexColor(a.highlightColor, "--highlight-color");
   effects::RenderOptions ro;
   ro.ssaa = a.ssaa;
   ro.transparent = a.transparent;
@@ -232,8 +236,8 @@ int RunRender(const RenderArgs& a) {
       throw io::InputError({"--highlight"}, "selection '" + a.highlight + "' matches no atom");
     const effects::LinearRgb c = effects::UnpackSrgb(haloRgb);
     ro.highlight.color = glm::vec3(c.r, c.g, c.b);
-    ro.highlight.strength = float(a.haloStrength);
-    ro.highlight.trail = a.haloTrail;
+    ro.highlight.strength = float(a.highlightStrength);
+    ro.highlight.trail = a.highlightTrail;
   }
 
   raster::Camera cam = raster::DefaultCamera(scene, size.width, size.height);

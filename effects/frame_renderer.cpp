@@ -7,6 +7,7 @@
 
 #include "common/check.h"
 #include "effects/color.h"
+#include "effects/pass_list.h"
 #include "raster/gbuffer.h"
 
 namespace softmol::effects {
@@ -45,24 +46,9 @@ void ResolveAovs(const raster::GBuffer& g, const std::vector<float>& ao, const R
   });
 }
 
-bool HighlightWanted(const RenderOptions& o) {
-  return std::any_of(o.highlight.spheres.begin(), o.highlight.spheres.end(),
-                     [](uint8_t b) { return b != 0; });
-}
-
 }  // namespace
 
-uint32_t RequiredChannels(const RenderOptions& o) {
-  uint32_t ch = raster::kDepth;  // the depth test needs it whatever the outputs
-  if (o.color) ch |= raster::kNormal | raster::kBaseColor | raster::kPrimitiveId;
-  if (o.aovs & kAovNormal) ch |= raster::kNormal | raster::kPrimitiveId;
-  if (o.aovs & kAovId) ch |= raster::kPrimitiveId;
-  // AO is computed where it is seen: it needs the surface (depth, normal) of each sample.
-  const bool aoWanted = o.ao != AoMode::kNone && (o.color || (o.aovs & kAovAo));
-  if (aoWanted) ch |= raster::kNormal | raster::kPrimitiveId;
-  if (o.color && HighlightWanted(o)) ch |= raster::kPrimitiveId;  // the selection's own samples
-  return ch;
-}
+uint32_t RequiredChannels(const RenderOptions& o) { return GBufferChannels(PlanPasses(o)); }
 
 RenderedFrame RenderFrame(const raster::PrimitiveScene& scene, const raster::Camera& camera,
                           const RenderOptions& options, FrameResources* resources) {
@@ -79,94 +65,93 @@ void RenderFrame(const raster::PrimitiveScene& scene, const raster::Camera& came
   f.width = camera.width;
   f.height = camera.height;
   const size_t n = size_t(f.width) * size_t(f.height);
+  const std::vector<PlannedPass> plan = PlanPasses(o);
 
-  // Pass 1: the G-buffer, at ssaa× the output resolution.
+  // Samples are taken at ssaa× the output resolution.
   raster::Camera cam = camera;
   cam.width = camera.width * o.ssaa;
   cam.height = camera.height * o.ssaa;
-  raster::FrameOptions fo;
-  fo.tileSize = o.tileSize;
-  fo.channels = RequiredChannels(o);
   FrameResources local;
   FrameResources& res = resources ? *resources : local;
   raster::GBuffer& g = res.gbuffer;
-  f.rasterStats = raster::RenderGBuffer(scene, cam, fo, g, &res.workspace);
-  const Clock::time_point t1 = Clock::now();
-  f.passes.push_back({"gbuffer", 0.0, MsBetween(t0, t1)});
-
-  // AO passes, only when AO is asked for and someone reads it (shading or the AO AOV).
-  Clock::time_point tAo = t1;
   std::vector<float>& ao = res.ao;
   ao.clear();
-  if (o.ao != AoMode::kNone && (o.color || (o.aovs & kAovAo))) {
-    ao.resize(size_t(g.width) * size_t(g.height));
-    if (o.ao == AoMode::kCone) {
-      const bool rebuilt = ao::UpdateOccupancyPyramid(scene, o.pyramid, res.pyramid);
-      const Clock::time_point tPyramid = Clock::now();
-      f.passes.push_back({rebuilt ? "occupancy pyramid" : "occupancy pyramid (reused)", MsBetween(t0, tAo),
-                          MsBetween(tAo, tPyramid)});
-      ao::ConeTraceAo(res.pyramid, cam, g, o.cone, ao);
-      const Clock::time_point tCone = Clock::now();
-      f.passes.push_back({"cone ao", MsBetween(t0, tPyramid), MsBetween(tPyramid, tCone)});
-      tAo = tCone;
-    } else {
-      ao = ao::ReferenceAo(scene, cam, g, o.reference);
-      const Clock::time_point tRef = Clock::now();
-      f.passes.push_back({"reference ao", MsBetween(t0, tAo), MsBetween(tAo, tRef)});
-      tAo = tRef;
-    }
-  }
+  bool haloReady = false;  // the halo volume holds something to march through
 
-  // Pass 2: deferred shading fused with the supersample resolve, only when colour is wanted.
-  Clock::time_point t2 = tAo;
-  if (o.color) {
-    f.rgba.resize(4 * n);  // every element is written: no need to clear
-    ShadeAndResolve(g, o.ssaa, o.shading, Backdrop{o.background, o.transparent}, ao, f.rgba);
-    t2 = Clock::now();
-    f.passes.push_back({"shading", MsBetween(t0, tAo), MsBetween(tAo, t2)});
-    if (HighlightWanted(o)) {
-      // §6.1: the selection's pyramid (same options as the AO one, its own box), resampled into
-      // the halo volume; with a trail (§6.2) the volume decays instead of being rebuilt.
-      SelectSpheres(scene, o.highlight.spheres, res.haloScene);
-      if (res.haloScene.spheres.size() == 0) {
-        res.haloVolume.valid = false;  // nothing selected is drawable: nothing to march
-      } else {
-        ao::UpdateOccupancyPyramid(res.haloScene, o.pyramid, res.haloPyramid);
-        UpdateHaloVolume(res.haloPyramid, o.highlight, scene.Bounds(), res.haloVolume);
+  Clock::time_point passStart = t0;
+  for (const PlannedPass& pass : plan) {
+    std::string name = pass.name;
+    switch (pass.id) {
+      case PassId::kGBuffer: {
+        raster::FrameOptions fo;
+        fo.tileSize = o.tileSize;
+        fo.channels = GBufferChannels(plan);
+        f.rasterStats = raster::RenderGBuffer(scene, cam, fo, g, &res.workspace);
+        break;
       }
-      const Clock::time_point tP = Clock::now();
-      f.passes.push_back({"halo pyramid", MsBetween(t0, t2), MsBetween(t2, tP)});
-      // The halo of every G-buffer sample, composited over the resolved pixels with the
-      // resolve's box weights (the "over" of a per-pixel mean opacity equals the mean of the
-      // per-sample "over"s, since both are linear in h).
-      if (res.haloVolume.valid) {
-        res.halo.resize(size_t(g.width) * size_t(g.height));
-        TraceHalos(res.haloVolume, cam, g, o.highlight, res.halo);
-        CompositeHalos(res.halo, g.width, o.ssaa, f.width, f.height, o.highlight.color, f.rgba);
-      }
-      const Clock::time_point tH = Clock::now();
-      f.passes.push_back({"halos", MsBetween(t0, tP), MsBetween(tP, tH)});
-      t2 = tH;
+      case PassId::kOccupancyPyramid:
+        if (!ao::UpdateOccupancyPyramid(scene, o.pyramid, res.pyramid)) name += " (reused)";
+        break;
+      case PassId::kConeAo:
+        ao.resize(size_t(g.width) * size_t(g.height));
+        ao::ConeTraceAo(res.pyramid, cam, g, o.cone, ao);
+        break;
+      case PassId::kReferenceAo:
+        ao = ao::ReferenceAo(scene, cam, g, o.reference);
+        break;
+      case PassId::kAoBake:
+      case PassId::kBakedAoLookup:
+        SOFTMOL_CHECK(false);  // not planned yet
+        break;
+      case PassId::kShading:
+        // Deferred shading fused with the supersample resolve.
+        f.rgba.resize(4 * n);  // every element is written: no need to clear
+        ShadeAndResolve(g, o.ssaa, o.shading, Backdrop{o.background, o.transparent}, ao, f.rgba);
+        break;
+      case PassId::kHaloPyramid:
+        // §6.1: the selection's pyramid (same options as the AO one, its own box), resampled
+        // into the halo volume; with a trail (§6.2) the volume decays instead of being rebuilt.
+        SelectSpheres(scene, o.highlight.spheres, res.haloScene);
+        if (res.haloScene.spheres.size() == 0) {
+          res.haloVolume.valid = false;  // nothing selected is drawable: nothing to march
+        } else {
+          ao::UpdateOccupancyPyramid(res.haloScene, o.pyramid, res.haloPyramid);
+          UpdateHaloVolume(res.haloPyramid, o.highlight, scene.Bounds(), res.haloVolume);
+        }
+        haloReady = res.haloVolume.valid;
+        break;
+      case PassId::kObjectHalos:
+        // The halo of every G-buffer sample, composited over the resolved pixels with the
+        // resolve's box weights (the "over" of a per-pixel mean opacity equals the mean of the
+        // per-sample "over"s, since both are linear in h).
+        if (haloReady) {
+          res.halo.resize(size_t(g.width) * size_t(g.height));
+          TraceHalos(res.haloVolume, cam, g, o.highlight, res.halo);
+          CompositeHalos(res.halo, g.width, o.ssaa, f.width, f.height, o.highlight.color, f.rgba);
+        }
+        break;
+      case PassId::kAovs:
+        // At output resolution, in file row order. A plane that is not asked for is left
+        // empty; one that is gets every element written.
+        f.depth.resize(o.aovs & kAovDepth ? n : 0);
+        f.normalX.resize(o.aovs & kAovNormal ? n : 0);
+        f.normalY.resize(o.aovs & kAovNormal ? n : 0);
+        f.normalZ.resize(o.aovs & kAovNormal ? n : 0);
+        f.id.resize(o.aovs & kAovId ? n : 0);
+        f.ao.resize(o.aovs & kAovAo ? n : 0);
+        ResolveAovs(g, ao, o, f);
+        break;
     }
+    const Clock::time_point passEnd = Clock::now();
+    f.passes.push_back({std::move(name), MsBetween(t0, passStart), MsBetween(passStart, passEnd)});
+    passStart = passEnd;
   }
-
   if (!o.color) f.rgba.clear();
-
-  // Pass 3: the AOVs at output resolution, in file row order, only when asked for. A plane
-  // that is not asked for is left empty; one that is gets every element written.
-  Clock::time_point t4 = t2;
-  f.depth.resize(o.aovs & kAovDepth ? n : 0);
-  f.normalX.resize(o.aovs & kAovNormal ? n : 0);
-  f.normalY.resize(o.aovs & kAovNormal ? n : 0);
-  f.normalZ.resize(o.aovs & kAovNormal ? n : 0);
-  f.id.resize(o.aovs & kAovId ? n : 0);
-  f.ao.resize(o.aovs & kAovAo ? n : 0);
-  if (o.aovs != 0) {
-    ResolveAovs(g, ao, o, f);
-    t4 = Clock::now();
-    f.passes.push_back({"aovs", MsBetween(t0, t2), MsBetween(t2, t4)});
+  if (o.aovs == 0) {
+    f.depth.clear(), f.normalX.clear(), f.normalY.clear(), f.normalZ.clear();
+    f.id.clear(), f.ao.clear();
   }
-  f.totalMs = MsBetween(t0, t4);
+  f.totalMs = MsBetween(t0, passStart);
 }
 
 std::vector<uint8_t> EncodeSrgb8(const RenderedFrame& f, bool withAlpha) {

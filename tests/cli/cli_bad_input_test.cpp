@@ -72,9 +72,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"near_beyond_far", "render " + kPept + " -o %O --near 50 --far 10", "--far"},
         BadCase{"highlight_matches_nothing", "render '" + Data("3sn6.pdb") + "' -o %O --highlight 'resn NOPE'", "--highlight"},
         BadCase{"highlight_bad_syntax", "render " + kPept + " -o %O --highlight 'resi x'", "--highlight"},
-        BadCase{"halo_trail_without_trajectory", "render " + kPept + " -o %O --highlight all --halo-trail 5", "--halo-trail"},
+        BadCase{"highlight_trail_without_trajectory", "render " + kPept + " -o %O --highlight all --highlight-trail 5", "--highlight-trail"},
         BadCase{"highlight_on_gl_backend", "render " + kPept + " -o %O --backend gl --highlight all", "--highlight"},
-        BadCase{"bad_halo_color", "render " + kPept + " -o %O --highlight all --halo-color yellow", "--halo-color"},
+        BadCase{"bad_highlight_color", "render " + kPept + " -o %O --highlight all --highlight-color yellow", "--highlight-color"},
         BadCase{"info_missing", "info %D/missing.cif", "missing.cif"}),
     [](const testing::TestParamInfo<BadCase>& i) { return std::string(i.param.name); });
 

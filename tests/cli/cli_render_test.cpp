@@ -187,7 +187,7 @@ TEST(CliRender, HighlightDrawsAHaloAroundTheLigand) {
   const std::string plainPath = (dir / "plain.png").string(), haloPath = (dir / "halo.png").string();
   const CommandResult plain = RunSoftmol(common + plainPath + "'", dir);
   ASSERT_EQ(plain.exitCode, 0) << plain.err;
-  const CommandResult halo = RunSoftmol(common + haloPath + "' --highlight ligand --halo-color ff0000", dir);
+  const CommandResult halo = RunSoftmol(common + haloPath + "' --highlight ligand --highlight-color ff0000", dir);
   ASSERT_EQ(halo.exitCode, 0) << halo.err;
   EXPECT_EQ(plain.out.find("halo"), std::string::npos) << plain.out;
   EXPECT_NE(halo.out.find("halo pyramid"), std::string::npos) << halo.out;
@@ -216,7 +216,7 @@ TEST(CliRender, HaloTrailLeavesAWakeAcrossFrames) {
   for (int t = 0; t < 2; ++t) {
     const std::string pattern = (dir / (std::string(t ? "short" : "long") + "_%03d.png")).string();
     const CommandResult r = RunSoftmol("render '" + Data("md.pdb") + "' --trajectory '" + Data("md.xtc") +
-                                           "' --frames 0:20:10 --highlight ion --halo-trail " + trail[t] +
+                                           "' --frames 0:20:10 --highlight ion --highlight-trail " + trail[t] +
                                            " -o '" + pattern + "' --size 100x75",
                                        dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "effects/frame_renderer.h"
+#include "effects/pass_list.h"
 
 namespace softmol::effects {
 namespace {
@@ -57,6 +58,71 @@ TEST(FrameRenderer, OnlyTheCalledForPassesRun) {
   o.color = true;
   o.aovs = 0;
   EXPECT_EQ(PassNames(RenderFrame(scene, cam, o)), (std::vector<std::string>{"gbuffer", "shading"}));
+}
+
+std::vector<std::string> PlanNames(const RenderOptions& o) {
+  std::vector<std::string> names;
+  for (const PlannedPass& p : PlanPasses(o)) names.push_back(p.name);
+  return names;
+}
+
+using Names = std::vector<std::string>;
+
+TEST(PassList, EachSceneRunsOnlyWhatItCallsFor) {
+  RenderOptions o;
+  EXPECT_EQ(PlanNames(o), (Names{"gbuffer", "shading"}));
+  o.ao = AoMode::kCone;
+  EXPECT_EQ(PlanNames(o), (Names{"gbuffer", "occupancy pyramid", "cone ao", "shading"}));
+  // AO nobody reads is not computed: AOVs without the AO plane, and no colour.
+  o.color = false;
+  o.aovs = kAovDepth;
+  EXPECT_EQ(PlanNames(o), (Names{"gbuffer", "aovs"}));
+  o.aovs = kAovDepth | kAovAo;
+  EXPECT_EQ(PlanNames(o), (Names{"gbuffer", "occupancy pyramid", "cone ao", "aovs"}));
+  o.ao = AoMode::kReference;
+  EXPECT_EQ(PlanNames(o), (Names{"gbuffer", "reference ao", "aovs"}));
+  // A highlight needs colour to composite over; without colour it is not drawn.
+  o.ao = AoMode::kNone;
+  o.highlight.spheres = {0, 1};
+  EXPECT_EQ(PlanNames(o), (Names{"gbuffer", "aovs"}));
+  o.color = true;
+  o.aovs = 0;
+  EXPECT_EQ(PlanNames(o), (Names{"gbuffer", "shading", "halo pyramid", "halos"}));
+  o.highlight.spheres = {0, 0};  // a selection that selects nothing draws nothing
+  EXPECT_EQ(PlanNames(o), (Names{"gbuffer", "shading"}));
+}
+
+TEST(PassList, PassesDeclareWhatTheyReadAndWrite) {
+  RenderOptions o;
+  o.ao = AoMode::kCone;
+  const auto plan = PlanPasses(o);
+  ASSERT_EQ(plan.size(), 4u);
+  EXPECT_EQ(BufferNames(plan[2].reads), "depth, normal, occupancy");
+  EXPECT_EQ(BufferNames(plan[2].writes), "ao");
+  // Every buffer a kept pass reads is written by an earlier kept pass (or is the scene).
+  uint64_t written = kBufScene;
+  for (const PlannedPass& p : plan) {
+    EXPECT_EQ(p.reads & ~written, 0u) << p.name << " reads " << BufferNames(p.reads & ~written);
+    written |= p.writes;
+  }
+  // The G-buffer writes only what someone reads: no surface coordinates, lines or caps.
+  EXPECT_EQ(BufferNames(plan[0].writes), "depth, normal, base color, primitive id");
+}
+
+TEST(PassList, TheFrameRunsExactlyThePlan) {
+  const auto scene = OneSphere();
+  raster::Camera cam = LookDownZ(32, 32);
+  raster::FitNearFar(cam, scene);
+  RenderOptions o;
+  o.ao = AoMode::kCone;
+  o.aovs = kAovAo;
+  o.highlight.spheres = {1};
+  FrameResources res;
+  const RenderedFrame f = RenderFrame(scene, cam, o, &res);
+  EXPECT_EQ(PassNames(f), PlanNames(o));
+  // The second frame of an unchanged scene reuses the pyramid, and says so.
+  const RenderedFrame again = RenderFrame(scene, cam, o, &res);
+  EXPECT_EQ(PassNames(again)[1], "occupancy pyramid (reused)");
 }
 
 TEST(FrameRenderer, SupersampleResolveAveragesCoverage) {

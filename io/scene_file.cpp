@@ -1,0 +1,109 @@
+#include "io/scene_file.h"
+
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "io/error.h"
+
+namespace softmol::io {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+// Scene files are small; a megabyte of JSON is a mistake (a molecule passed as --scene).
+constexpr std::streamoff kMaxSceneBytes = 1 << 20;
+
+std::string ScalarText(const Json& v) {
+  if (v.is_string()) return v.get<std::string>();
+  if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
+  return v.dump();  // numbers: integers stay integers, doubles round-trip
+}
+
+// nlohmann's parse errors give a byte offset; people read lines and columns.
+SourceLocation LocationOfByte(const std::string& name, const std::string& text, size_t byte) {
+  long line = 1;
+  int column = 1;
+  for (size_t i = 0; i < byte && i < text.size(); ++i) {
+    if (text[i] == '\n') ++line, column = 1;
+    else ++column;
+  }
+  return {name, line, column};
+}
+
+// Duplicate keys are silently merged by most JSON readers; in a scene they are a typo.
+class DuplicateKeyCheck {
+ public:
+  explicit DuplicateKeyCheck(const std::string& name) : name_(name) {}
+  bool operator()(int depth, Json::parse_event_t event, Json& parsed) {
+    if (event == Json::parse_event_t::key && depth == 1) {
+      const std::string key = parsed.get<std::string>();
+      if (!keys_.insert(key).second) throw InputError({name_}, "key '" + key + "' appears twice");
+    }
+    return true;
+  }
+
+ private:
+  std::string name_;
+  std::set<std::string> keys_;
+};
+
+}  // namespace
+
+std::vector<SceneSetting> ParseSceneFile(const std::string& text, const std::string& name) {
+  Json doc;
+  try {
+    doc = Json::parse(text, DuplicateKeyCheck(name));
+  } catch (const Json::parse_error& e) {
+    std::string what = e.what();
+    // "[json.exception.parse_error.101] parse error at line 3, column 5: syntax error ..."
+    const size_t colon = what.find(": ");
+    throw InputError(LocationOfByte(name, text, e.byte == 0 ? 0 : e.byte - 1),
+                     colon == std::string::npos ? what : what.substr(colon + 2));
+  }
+  if (!doc.is_object())
+    throw InputError({name}, "a scene file is one JSON object ({\"style\": \"balls\", ...})");
+  std::vector<SceneSetting> settings;
+  for (const auto& [key, value] : doc.items()) {
+    SceneSetting s;
+    s.key = key;
+    const std::string where = "key '" + key + "': ";
+    if (value.is_null()) throw InputError({name}, where + "null is not a value");
+    if (value.is_object())
+      throw InputError({name}, where + "expected a string, number, boolean or list, not an object");
+    if (value.is_array()) {
+      s.kind = SceneSetting::Kind::kList;
+      if (value.empty()) throw InputError({name}, where + "empty list");
+      for (const Json& e : value) {
+        if (!(e.is_string() || e.is_number()))
+          throw InputError({name}, where + "list elements must be strings or numbers");
+        s.values.push_back(ScalarText(e));
+      }
+    } else {
+      s.kind = value.is_string()    ? SceneSetting::Kind::kString
+               : value.is_boolean() ? SceneSetting::Kind::kBoolean
+                                    : SceneSetting::Kind::kNumber;
+      s.values.push_back(ScalarText(value));
+    }
+    settings.push_back(std::move(s));
+  }
+  return settings;
+}
+
+std::vector<SceneSetting> ReadSceneFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError({path}, "cannot open the scene file");
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  if (size < 0) throw InputError({path}, "cannot read the scene file");
+  if (size > kMaxSceneBytes) throw InputError({path}, "larger than 1 MiB: not a scene file");
+  in.seekg(0);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in && !in.eof()) throw InputError({path}, "cannot read the scene file");
+  return ParseSceneFile(text.str(), path);
+}
+
+}  // namespace softmol::io
