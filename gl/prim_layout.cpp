@@ -48,6 +48,8 @@ std::string PrimLayoutDefines() {
   s += "#define dBaseColor " + std::to_string(raster::kBaseColor) + "u\n";
   s += "#define dPrimitiveId " + std::to_string(raster::kPrimitiveId) + "u\n";
   s += "#define dSurfaceCoord " + std::to_string(raster::kSurfaceCoord) + "u\n";
+  s += "#define dLine " + std::to_string(raster::kLine) + "u\n";
+  s += "#define dCapped " + std::to_string(raster::kCapped) + "u\n";
   s += "#define dNoPrimitive " + std::to_string(raster::kNoPrimitive) + "u\n";
 
   SOFTMOL_FIELD(SpherePrim, cx);
@@ -56,6 +58,7 @@ std::string PrimLayoutDefines() {
   SOFTMOL_FIELD(SpherePrim, rr);
   SOFTMOL_FIELD(SpherePrim, c0);
   SOFTMOL_FIELD(SpherePrim, invR);
+  SOFTMOL_FIELD(SpherePrim, r);
   SOFTMOL_FIELD(SpherePrim, color);
   SOFTMOL_FIELD(SpherePrim, id);
   SOFTMOL_FIELD(SpherePrim, box);
@@ -74,6 +77,7 @@ std::string PrimLayoutDefines() {
   SOFTMOL_FIELD(CylinderPrim, aOrtho);
   SOFTMOL_FIELD(CylinderPrim, rr);
   SOFTMOL_FIELD(CylinderPrim, invR);
+  SOFTMOL_FIELD(CylinderPrim, r);
   SOFTMOL_FIELD(CylinderPrim, len);
   SOFTMOL_FIELD(CylinderPrim, halfLen);
   SOFTMOL_FIELD(CylinderPrim, invLen);

@@ -16,7 +16,7 @@ namespace softmol::gl::detail {
 namespace {
 
 // Exact formats only (no normalized or half formats): the comparison is bit for bit.
-constexpr GLenum kFormats[kAttCount] = {GL_R32F, GL_RGBA32F, GL_R32UI, GL_R32UI, GL_RGBA32F};
+constexpr GLenum kFormats[kAttCount] = {GL_R32F, GL_RGBA32F, GL_R32UI, GL_R32UI, GL_RGBA32F, GL_RG32F};
 
 uint32_t ChannelOf(int attachment) {
   switch (attachment) {
@@ -24,6 +24,7 @@ uint32_t ChannelOf(int attachment) {
     case kAttNormal: return raster::kNormal;
     case kAttBaseColor: return raster::kBaseColor;
     case kAttPrimitiveId: return raster::kPrimitiveId;
+    case kAttEdges: return raster::kLine | raster::kCapped;
     default: return raster::kSurfaceCoord;
   }
 }
@@ -89,10 +90,19 @@ void TileKernelPass::Release() {
 
 size_t TileKernelPass::Prepare(const raster::PrimitiveScene& scene, const raster::Camera& camera,
                                uint32_t channels, raster::detail::FrameConstants& fc) {
+  raster::FrameOptions options;
+  options.channels = channels;
+  return Prepare(scene, camera, options, fc);
+}
+
+size_t TileKernelPass::Prepare(const raster::PrimitiveScene& scene, const raster::Camera& camera,
+                               const raster::FrameOptions& options,
+                               raster::detail::FrameConstants& fc) {
   using namespace raster::detail;
-  const ViewSetup view = MakeViewSetup(camera, scene);
-  fc = MakeFrameConstants(view, channels);
-  SetupPrimitives(scene, view, setup, (channels & raster::kSurfaceCoord) != 0);
+  raster::ValidateFrameOptions(options);
+  const ViewSetup view = MakeViewSetup(camera, scene, options);
+  fc = MakeFrameConstants(view, options);
+  SetupPrimitives(scene, view, setup, (options.channels & raster::kSurfaceCoord) != 0);
   // The CPU's draw order (raster/detail/setup.h, DepthBucketer): exact depth ties between
   // primitives are broken by it on both backends (tests/gl exact_ties checks it).
   const DepthBucketer bucket = MakeDepthBucketer(fc);
@@ -144,6 +154,7 @@ void TileKernelPass::Draw(const raster::detail::FrameConstants& fc, uint32_t cha
   glClearNamedFramebufferuiv(g.fbo, GL_COLOR, kAttBaseColor, zeroU);
   glClearNamedFramebufferuiv(g.fbo, GL_COLOR, kAttPrimitiveId, noPrimitive);
   glClearNamedFramebufferfv(g.fbo, GL_COLOR, kAttSurface, zero);
+  glClearNamedFramebufferfv(g.fbo, GL_COLOR, kAttEdges, zero);
   const float one = 1.0f;
   glClearNamedFramebufferfv(g.fbo, GL_DEPTH, 0, &one);
 
@@ -163,6 +174,11 @@ void TileKernelPass::Draw(const raster::detail::FrameConstants& fc, uint32_t cha
   glProgramUniform1i(program, Loc(program, "uOrtho"), fc.ortho ? 1 : 0);
   glProgramUniform1fv(program, Loc(program, "uViewToWorld"), 9, fc.viewToWorld);
   glProgramUniform1f(program, Loc(program, "uDepthScale"), depthScale);
+  glProgramUniform1i(program, Loc(program, "uContour"), fc.contour ? 1 : 0);
+  glProgramUniform1f(program, Loc(program, "uContourWidth"), fc.contourWidth);
+  glProgramUniform1f(program, Loc(program, "uContourEta"), fc.contourEta);
+  glProgramUniform1i(program, Loc(program, "uCapping"), fc.capping ? 1 : 0);
+  glProgramUniform1f(program, Loc(program, "uCapEps"), fc.capEps);
   for (GLuint i = 0; i < 4; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buffers[i]);
 
   glBindFramebuffer(GL_FRAMEBUFFER, g.fbo);
@@ -202,6 +218,14 @@ void ReadBack(const GBufferTargets& g, uint32_t channels, raster::GBuffer& out) 
                       GLsizei(n * sizeof(uint32_t)), out.primitiveId.data());
   if (out.channels & raster::kSurfaceCoord)
     readFloat4(g.color[kAttSurface], out.surfaceU, out.surfaceV, out.surfaceW);
+  if (out.channels & (raster::kLine | raster::kCapped)) {
+    std::vector<float> rg(2 * n);
+    glGetTextureImage(g.color[kAttEdges], 0, GL_RG, GL_FLOAT, GLsizei(rg.size() * sizeof(float)), rg.data());
+    for (size_t i = 0; i < n; ++i) {
+      if (out.channels & raster::kLine) out.line[i] = rg[2 * i];
+      if (out.channels & raster::kCapped) out.capped[i] = rg[2 * i + 1];
+    }
+  }
 }
 
 }  // namespace softmol::gl::detail

@@ -8,7 +8,9 @@
 #include <bit>
 #include <chrono>
 #include <cstdint>
+#include <cmath>
 #include <cstring>
+#include <string>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -18,6 +20,7 @@
 #include <tbb/parallel_for.h>
 
 #include "common/check.h"
+#include "io/error.h"
 #include "raster/detail/setup.h"
 #include "raster/detail/tile.h"
 
@@ -84,20 +87,21 @@ void CountingSort(std::vector<uint32_t>& keys, std::vector<detail::BinEntry>& it
 // Per-thread tile buffers, reused across tiles and frames.
 struct TileScratch {
   int size = 0;
-  std::vector<float> f;     // depth, nx, ny, nz, su, sv, sw, rowMax
+  std::vector<float> f;     // depth, nx, ny, nz, su, sv, sw, line, capped, rowMax
   std::vector<uint32_t> u;  // color, id
   detail::TileView View(int ts) {
     const size_t n = size_t(ts) * size_t(ts);
     if (size != ts) {
       size = ts;
-      f.assign(7 * n + size_t(ts), 0.0f);
+      f.assign(9 * n + size_t(ts), 0.0f);
       u.assign(2 * n, 0u);
     }
     detail::TileView v;
     v.depth = f.data();
     v.normalX = f.data() + n, v.normalY = f.data() + 2 * n, v.normalZ = f.data() + 3 * n;
     v.surfaceU = f.data() + 4 * n, v.surfaceV = f.data() + 5 * n, v.surfaceW = f.data() + 6 * n;
-    v.rowMax = f.data() + 7 * n;
+    v.line = f.data() + 7 * n, v.capped = f.data() + 8 * n;
+    v.rowMax = f.data() + 9 * n;
     v.baseColor = u.data(), v.primitiveId = u.data() + n;
     return v;
   }
@@ -149,12 +153,26 @@ void CopyOut(const detail::TileView& v, uint32_t ch, GBuffer& g) {
     CopyPlane(v, v.surfaceV, g.surfaceV, g.width);
     CopyPlane(v, v.surfaceW, g.surfaceW, g.width);
   }
+  if (ch & kLine) CopyPlane(v, v.line, g.line, g.width);
+  if (ch & kCapped) CopyPlane(v, v.capped, g.capped, g.width);
 #if defined(__SSE2__)
   _mm_sfence();  // streaming stores are weakly ordered: publish before the task ends
 #endif
 }
 
+void CheckOption(float value, const char* option, const char* what) {
+  if (!std::isfinite(value) || value < 0.0f)
+    throw io::InputError({option}, std::string(what) + " must be a finite number >= 0, got " +
+                                       std::to_string(value));
+}
+
 }  // namespace
+
+void ValidateFrameOptions(const FrameOptions& o) {
+  CheckOption(o.contourWidth, "--contours", "the contour line width (Å)");
+  CheckOption(o.contourDepthScale, "--contour-depth-scale", "the contour depth scale");
+  CheckOption(o.nearClip, "--near-clip", "the near clipping distance (Å)");
+}
 
 FrameStats RenderGBuffer(const PrimitiveScene& scene, const Camera& camera,
                          const FrameOptions& options, GBuffer& out, FrameWorkspace* workspace) {
@@ -163,14 +181,15 @@ FrameStats RenderGBuffer(const PrimitiveScene& scene, const Camera& camera,
                 std::has_single_bit(unsigned(options.tileSize)));
   SOFTMOL_CHECK(scene.size() <= detail::kIndexMask);
   SOFTMOL_CHECK(camera.width <= 32767 && camera.height <= 32767);  // BinEntry's int16 boxes
+  ValidateFrameOptions(options);
   FrameWorkspace local;
   FrameWorkspace::Impl& ws = workspace ? *workspace->impl : *local.impl;
   FrameStats stats;
 
   // ---- setup ----
   const auto t0 = Clock::now();
-  const detail::ViewSetup view = detail::MakeViewSetup(camera, scene);
-  const detail::FrameConstants fc = detail::MakeFrameConstants(view, options.channels);
+  const detail::ViewSetup view = detail::MakeViewSetup(camera, scene, options);
+  const detail::FrameConstants fc = detail::MakeFrameConstants(view, options);
   stats.primitivesSetUp = scene.size();
   stats.primitivesCulled = detail::SetupPrimitives(scene, view, ws.setup,
                                                    (options.channels & kSurfaceCoord) != 0);

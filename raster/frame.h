@@ -16,7 +16,30 @@ namespace softmol::raster {
 struct FrameOptions {
   int tileSize = 32;  // pixels, a power of two in [8, 128] (below 16 wastes AVX-512 lanes)
   uint32_t channels = kDepth | kNormal | kBaseColor | kPrimitiveId;
+  // Contour lines (Tarini et al. 2006 §5.1), spheres and cylinders (not ellipsoids): rays
+  // passing a primitive at R < d <= R + contourWidth become line fragments (kLine holds
+  // their weight; depth, normal = silhouette normal, colour and id are the primitive's).
+  float contourWidth = 0;          // ξ, Å; 0 = off (kernels and boxes exactly as without)
+  bool contourDepthAware = false;  // push line fragments back by η(d − R)
+  float contourDepthScale = 10;    // η (Å of depth per Å of line): a line over a primitive
+                                   // Δ behind shows min(ξ, Δ/η) wide
+  // Near-plane capping (§5.3): a primitive cut by the plane at nearClip Å along the view
+  // axis shows a flat cap there (normal (0,0,1), kCapped = 1, depth within
+  // nearClip·(1 − kCapEpsilon, 1]); primitives wholly in front are discarded. nearClip
+  // replaces the camera's near plane. 0 = off (the near plane clips the front surface and
+  // the inner wall shows, as without).
+  float nearClip = 0;
 };
+
+// Relative depth band of near-plane caps just in front of nearClip (where nothing else can
+// be), used to order the caps of cut, intersecting primitives (Tarini's ε(K + z),
+// raster/shared/attributes.inc CapDepth): at nearClip = 100 Å the band is 0.1 Å and the caps
+// are ordered by their front hits to ~0.01 Å.
+inline constexpr float kCapEpsilon = 1.0f / 1024.0f;
+
+// Throws io::InputError naming the option for a bad contour width, depth scale or near clip
+// (negative, NaN or infinite). RenderGBuffer calls it.
+void ValidateFrameOptions(const FrameOptions& options);
 
 struct FrameStats {
   double setupMs = 0, binningMs = 0, rasterMs = 0;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <glm/common.hpp>
 #include <limits>
 
@@ -72,6 +73,52 @@ BoundingSphere PrimitiveScene::Bounds() const {
   });
   b.radius = std::sqrt(r2);
   return b;
+}
+
+void CylinderFrame(const glm::dvec3& n, glm::dvec3& b1, glm::dvec3& b2) {
+  const double sign = std::copysign(1.0, n.z);
+  const double a = -1.0 / (sign + n.z);
+  const double b = n.x * n.y * a;
+  b1 = glm::dvec3(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x);
+  b2 = glm::dvec3(b, sign + n.y * n.y * a, -n.y);
+}
+
+namespace {
+// Word-at-a-time mixing (the splitmix64 multiplier): collisions would take a deliberate
+// attack, and a cache miss only costs a rebuild.
+struct Hasher {
+  uint64_t h = 0x243F6A8885A308D3ull;
+  void Mix(uint64_t w) {
+    h ^= w + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
+    h *= 0xBF58476D1CE4E5B9ull;
+  }
+  void Bytes(const void* p, size_t n) {
+    const auto* b = static_cast<const unsigned char*>(p);
+    size_t i = 0;
+    for (; i + 8 <= n; i += 8) {
+      uint64_t w;
+      std::memcpy(&w, b + i, 8);
+      Mix(w);
+    }
+    uint64_t tail = 0;
+    std::memcpy(&tail, b + i, n - i);
+    Mix(tail ^ (uint64_t(n) << 56));
+  }
+  template <class T>
+  void Vec(const std::vector<T>& v) {
+    Mix(v.size());
+    if (!v.empty()) Bytes(v.data(), v.size() * sizeof(T));  // memcpy from null is UB
+  }
+};
+}  // namespace
+
+uint64_t GeometryHash(const PrimitiveScene& s) {
+  Hasher h;
+  h.Vec(s.spheres.x), h.Vec(s.spheres.y), h.Vec(s.spheres.z), h.Vec(s.spheres.radius);
+  h.Vec(s.cylinders.x0), h.Vec(s.cylinders.y0), h.Vec(s.cylinders.z0);
+  h.Vec(s.cylinders.x1), h.Vec(s.cylinders.y1), h.Vec(s.cylinders.z1), h.Vec(s.cylinders.radius);
+  h.Vec(s.ellipsoids.x), h.Vec(s.ellipsoids.y), h.Vec(s.ellipsoids.z), h.Vec(s.ellipsoids.axes);
+  return h.h;
 }
 
 }  // namespace softmol::raster

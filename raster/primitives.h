@@ -55,4 +55,13 @@ struct PrimitiveScene {
   BoundingSphere Bounds() const;
 };
 
+// The frame (b1, b2) around a cylinder's unit axis n in which the G-buffer's kSurfaceCoord
+// measures the angle (cos along b1, sin along b2): Duff et al. 2017's branchless orthonormal
+// basis, continuous except where n.z changes sign. Baking uses it so texels and fragments agree.
+void CylinderFrame(const glm::dvec3& n, glm::dvec3& b1, glm::dvec3& b2);
+
+// A 64-bit hash of the geometry (positions, radii, axes; not colours): what per-scene caches
+// (the occupancy pyramid, the baked AO atlas) compare to know whether anything moved.
+uint64_t GeometryHash(const PrimitiveScene& scene);
+
 }  // namespace softmol::raster

@@ -58,14 +58,12 @@ float ZMinKey(double zNear, double nearPlane) {
   return float(z - 1e-5 * std::abs(z));
 }
 
-// Branchless orthonormal basis (Duff et al. 2017) around unit n.
-void OrthonormalBasis(const glm::dvec3& n, glm::dvec3& b1, glm::dvec3& b2) {
-  const double sign = std::copysign(1.0, n.z);
-  const double a = -1.0 / (sign + n.z);
-  const double b = n.x * n.y * a;
-  b1 = glm::dvec3(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x);
-  b2 = glm::dvec3(b, sign + n.y * n.y * a, -n.y);
+// Lowest depth a fragment can get: the near plane, or the front of the cap band with
+// near-plane capping (CapDepth puts caps in near·(1 − kCapEpsilon, near]).
+double ZMinFloor(const ViewSetup& v) {
+  return v.capping ? v.nearPlane * (1.0 - double(kCapEpsilon)) : v.nearPlane;
 }
+
 
 }  // namespace
 
@@ -112,6 +110,31 @@ FrameConstants MakeFrameConstants(const ViewSetup& v, uint32_t channels) {
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) fc.viewToWorld[3 * r + c] = float(cols[c][r]);
   fc.channels = channels | kDepth;
+  return fc;
+}
+
+ViewSetup MakeViewSetup(const Camera& camera, const PrimitiveScene& scene,
+                        const FrameOptions& options) {
+  ViewSetup v = MakeViewSetup(camera, scene);
+  v.contourWidth = options.contourWidth > 0.0f ? double(options.contourWidth) : 0.0;
+  if (options.nearClip > 0.0f) {  // Tarini §5.3: the near clipping plane is the cut
+    v.nearPlane = double(options.nearClip);
+    v.capping = true;
+  }
+  return v;
+}
+
+FrameConstants MakeFrameConstants(const ViewSetup& v, const FrameOptions& options) {
+  FrameConstants fc = MakeFrameConstants(v, options.channels);
+  if (v.contourWidth > 0.0) {
+    fc.contour = true;
+    fc.contourWidth = float(v.contourWidth);
+    fc.contourEta = options.contourDepthAware ? options.contourDepthScale : 0.0f;
+  }
+  if (v.capping) {
+    fc.capping = true;
+    fc.capEps = kCapEpsilon * fc.nearPlane;
+  }
   return fc;
 }
 
@@ -177,11 +200,13 @@ bool SetupCylinder(const PrimitiveScene& scene, const ViewSetup& v, size_t i, Cy
   if (!(len > 0.0)) return false;  // zero length: an open cylinder of no area
   const glm::dvec3 w = axis / len;
   // Each end disc is a degenerate ellipsoid with S = r²(I − w wᵀ); its z half-extent is
-  // r·sqrt(1 − wz²).
+  // r·sqrt(1 − wz²). Contour lines (Tarini §5.1) reach R + ξ from the axis: the box and the
+  // nearest depth are those of the cylinder of that radius.
+  const double rb = r + v.contourWidth;
   double S[2][3][3];
   for (int row = 0; row < 3; ++row)
     for (int col = 0; col < 3; ++col)
-      S[0][row][col] = S[1][row][col] = r * r * ((row == col ? 1.0 : 0.0) - w[row] * w[col]);
+      S[0][row][col] = S[1][row][col] = rb * rb * ((row == col ? 1.0 : 0.0) - w[row] * w[col]);
   const double zExt = std::sqrt(std::max(S[0][2][2], 0.0));
   const double zNear = std::min(-a.z, -b.z) - zExt, zFar = std::max(-a.z, -b.z) + zExt;
   if (zFar < v.nearPlane || zNear > v.farPlane) return false;
@@ -202,6 +227,7 @@ bool SetupCylinder(const PrimitiveScene& scene, const ViewSetup& v, size_t i, Cy
   p.aOrtho = float(w.x * w.x + w.y * w.y);
   p.rr = float(r * r);
   p.invR = float(1.0 / r);
+  p.r = float(r);
   p.len = float(len);
   p.halfLen = float(0.5 * len);
   p.invLen = float(1.0 / len);
@@ -209,7 +235,7 @@ bool SetupCylinder(const PrimitiveScene& scene, const ViewSetup& v, size_t i, Cy
   // lookup) and carried to eye space, where the kernel dots it with the normal.
   if (surfaceFrame) {
     glm::dvec3 e1, e2;
-    OrthonormalBasis(glm::normalize(wb - wa), e1, e2);
+    CylinderFrame(glm::normalize(wb - wa), e1, e2);
     const glm::dvec3 e1e(glm::dot(v.right, e1), glm::dot(v.up, e1), glm::dot(v.back, e1));
     const glm::dvec3 e2e(glm::dot(v.right, e2), glm::dot(v.up, e2), glm::dot(v.back, e2));
     p.e1x = float(e1e.x), p.e1y = float(e1e.y), p.e1z = float(e1e.z);
@@ -217,7 +243,7 @@ bool SetupCylinder(const PrimitiveScene& scene, const ViewSetup& v, size_t i, Cy
   } else {
     p.e1x = p.e1y = p.e1z = p.e2x = p.e2y = p.e2z = 0.0f;
   }
-  p.zMin = ZMinKey(zNear, v.nearPlane);
+  p.zMin = ZMinKey(zNear, ZMinFloor(v));
   p.color0 = in.color0[i];
   p.color1 = in.color1[i];
   p.id = uint32_t(scene.spheres.size() + i);
@@ -277,7 +303,7 @@ bool SetupEllipsoid(const PrimitiveScene& scene, const ViewSetup& v, size_t i, E
   for (int k = 0; k < 3; ++k) Store3(e.mt + 3 * k, M[k]);  // row k of Mᵀ = column k of M
   const double len = glm::length(P0);
   e.c0 = float((len - 1.0) * (len + 1.0));
-  e.zMin = ZMinKey(zNear, v.nearPlane);
+  e.zMin = ZMinKey(zNear, ZMinFloor(v));
   e.color = in.color[i];
   e.id = uint32_t(scene.spheres.size() + scene.cylinders.size() + i);
   return true;
@@ -311,7 +337,9 @@ uint64_t SetupPrimitives(const PrimitiveScene& scene, const ViewSetup& v, SetupO
   k.halfWidth = v.halfWidth, k.halfHeight = v.halfHeight;
   k.width = v.width, k.height = v.height;
   k.nearPlane = v.nearPlane, k.farPlane = v.farPlane;
+  k.zMinFloor = ZMinFloor(v);
   k.slack = kBoxSlack;
+  k.grow = v.contourWidth;
   k.ortho = v.ortho;
   const SphereSet& in = scene.spheres;
   const size_t batches = (nS + kSetupBatch - 1) / kSetupBatch;
@@ -335,6 +363,7 @@ uint64_t SetupPrimitives(const PrimitiveScene& scene, const ViewSetup& v, SetupO
           p.rr = float(lanes.rr[j]);
           p.c0 = float(lanes.c0[j]);  // |c|² − r² in double (cancellation ≪ float rounding)
           p.invR = float(1.0 / radius[j]);
+          p.r = float(radius[j]);
           p.zMin = float(lanes.zMin[j]);
           p.color = in.color[i];
           p.id = uint32_t(i);

@@ -51,24 +51,28 @@ HWY_INLINE void SphereLanes(D d, const detail::SphereSetupConstants& k, const do
   auto finite = [&](V v) { return hn::Lt(hn::Abs(v), inf); };  // false for NaN and ±inf
   auto valid = hn::And(hn::And(hn::Gt(rad, zero), hn::Lt(rad, inf)),
                        hn::And(hn::And(finite(cx), finite(cy)), finite(cz)));
-  const V zNear = hn::Sub(hn::Neg(cz), rad), zFar = hn::Add(hn::Neg(cz), rad);
+  // Contour lines reach r + ξ from the centre (Tarini §5.1): box, culling and zMin use it.
+  // With ξ = 0, rb = rad exactly.
+  const V rb = hn::Add(rad, hn::Set(d, k.grow));
+  const V zNear = hn::Sub(hn::Neg(cz), rb), zFar = hn::Add(hn::Neg(cz), rb);
   valid = hn::And(
       valid, hn::And(hn::Ge(zFar, hn::Set(d, k.nearPlane)), hn::Le(zNear, hn::Set(d, k.farPlane))));
   const V rr = hn::Mul(rad, rad);
+  const V rrb = hn::Mul(rb, rb);
   V lox, hix, loy, hiy;
   hn::Mask<D> bounded;
   if (k.ortho) {
-    lox = hn::Sub(cx, rad), hix = hn::Add(cx, rad), loy = hn::Sub(cy, rad), hiy = hn::Add(cy, rad);
+    lox = hn::Sub(cx, rb), hix = hn::Add(cx, rb), loy = hn::Sub(cy, rb), hiy = hn::Add(cy, rb);
     bounded = hn::Eq(zero, zero);
   } else {
     // Eq. 5 for S = r²·I: A = cz² − r², Bh = ci·cz, roots (−Bh ± r·sqrt(ci² + cz² − r²))/A.
-    const V A = hn::Sub(hn::Mul(cz, cz), rr);
+    const V A = hn::Sub(hn::Mul(cz, cz), rrb);
     bounded = hn::And(hn::Lt(cz, zero), hn::Gt(A, zero));
     const V invA = hn::Div(hn::Set(d, 1.0), hn::IfThenElse(bounded, A, hn::Set(d, 1.0)));
     auto axis = [&](V ci, V& lo, V& hi) {
       const V bh = hn::Mul(ci, cz);
-      const V s = hn::Sub(hn::Add(hn::Mul(ci, ci), hn::Mul(cz, cz)), rr);
-      const V root = hn::Mul(rad, hn::Sqrt(hn::IfThenElse(hn::Gt(s, zero), s, zero)));
+      const V s = hn::Sub(hn::Add(hn::Mul(ci, ci), hn::Mul(cz, cz)), rrb);
+      const V root = hn::Mul(rb, hn::Sqrt(hn::IfThenElse(hn::Gt(s, zero), s, zero)));
       lo = hn::Mul(hn::Sub(hn::Neg(bh), root), invA);
       hi = hn::Mul(hn::Add(hn::Neg(bh), root), invA);
     };
@@ -83,7 +87,7 @@ HWY_INLINE void SphereLanes(D d, const detail::SphereSetupConstants& k, const do
   x1 = hn::IfThenElse(bounded, x1, hn::Set(d, k.width - 1.0)),
   y1 = hn::IfThenElse(bounded, y1, hn::Set(d, k.height - 1.0));
   valid = hn::And(valid, hn::Or(hn::Not(bounded), hn::And(okx, oky)));
-  const V nearP = hn::Set(d, k.nearPlane);
+  const V nearP = hn::Set(d, k.zMinFloor);
   const V zc = hn::IfThenElse(hn::Gt(zNear, nearP), zNear, nearP);
   const V zMin = hn::Sub(zc, hn::Mul(hn::Set(d, 1e-5), hn::Abs(zc)));
   const V c0 = hn::Sub(hn::Add(hn::Add(hn::Mul(cx, cx), hn::Mul(cy, cy)), hn::Mul(cz, cz)), rr);

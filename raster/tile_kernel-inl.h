@@ -3,7 +3,9 @@
 // pixels per vector; the ragged end of a row runs the same code at one lane (CappedTag).
 // Every function mirrors raster/shared/*.inc line for line with the same names. Only Add Sub
 // Mul Div Sqrt Neg, compares and IfThenElse: no fused or approximate operations
-// (tests/raster/banned_ops_test.cpp greps this file).
+// (tests/raster/banned_ops_test.cpp greps this file). Edge cueing (contour lines and
+// near-plane caps, Tarini et al. 2006 §5.1, §5.3) is a separate instantiation (kEdges), so
+// the default kernel runs exactly the code it ran without it.
 #if defined(SOFTMOL_RASTER_TILE_KERNEL_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef SOFTMOL_RASTER_TILE_KERNEL_INL_H_
 #undef SOFTMOL_RASTER_TILE_KERNEL_INL_H_
@@ -64,13 +66,22 @@ HWY_INLINE hn::Mask<D> LanesToTest(D d, V pixel, const PixelBox& c, float zMin, 
 }
 
 // Masked writes of a kept fragment: depth always, the other channels when requested.
-// BlendedStore writes only the kept lanes (one masked store on AVX-512, no reload).
-template <class D, class V = hn::Vec<D>>
+// BlendedStore writes only the kept lanes (one masked store on AVX-512, no reload). Without
+// edge cueing every fragment has line = capped = 0, the value the tile was cleared to, so
+// the default kernel does not store them.
+template <bool kEdges, class D, class V = hn::Vec<D>>
 HWY_INLINE void Write(D d, const detail::FrameConstants& fc, detail::TileView& t, size_t i,
                       hn::Mask<D> keep, V depth, V nx, V ny, V nz,
-                      hn::Vec<hn::RebindToUnsigned<D>> color, uint32_t id, V su, V sv, V sw) {
+                      hn::Vec<hn::RebindToUnsigned<D>> color, uint32_t id, V su, V sv, V sw,
+                      V line, V capped) {
   const hn::RebindToUnsigned<D> du;
   hn::BlendedStore(depth, keep, d, t.depth + i);
+  if constexpr (kEdges) {
+    if (fc.channels & kLine) hn::BlendedStore(line, keep, d, t.line + i);
+    if (fc.channels & kCapped) hn::BlendedStore(capped, keep, d, t.capped + i);
+  } else {
+    (void)line, (void)capped;
+  }
   if (fc.channels & kNormal) {
     hn::BlendedStore(nx, keep, d, t.normalX + i);
     hn::BlendedStore(ny, keep, d, t.normalY + i);
@@ -86,9 +97,45 @@ HWY_INLINE void Write(D d, const detail::FrameConstants& fc, detail::TileView& t
   }
 }
 
+// Twin of CapDepth (attributes.inc): Tarini et al. §5.3's ε(K + z) for a fragment moved onto
+// the near plane.
+template <class V>
+HWY_INLINE V CapDepth(V tNear, V nearPlane, V capEps) {
+  const V delta = hn::Sub(nearPlane, tNear);
+  const V f = hn::Div(delta, hn::Add(nearPlane, delta));
+  return hn::Sub(nearPlane, hn::Mul(capEps, f));
+}
+
+// Twin of ContourPixel (attributes.inc): the contour-line lanes (Tarini et al. §5.1) of a ray
+// that passes the centre (axis) at R < d <= R + ξ, with their depth, closest-approach
+// parameter, 1/d and line weight.
+template <bool kOrtho, class D, class V = hn::Vec<D>>
+HWY_INLINE hn::Mask<D> ContourLanes(D d, const detail::FrameConstants& fc, V X, V a, V B, V disc,
+                                    float radius, V& depth, V& tSil, V& invDist, V& weight) {
+  const V zero = hn::Zero(d), one = hn::Set(d, 1.0f);
+  const V xi = hn::Set(d, fc.contourWidth), r = hn::Set(d, radius);
+  const V rOut = hn::Add(r, xi);
+  const V discOut = hn::Sub(hn::Mul(a, hn::Mul(rOut, rOut)), X);
+  tSil = hn::Div(B, a);
+  const V dist = hn::Sqrt(hn::Div(X, a));
+  const V excess0 = hn::Sub(dist, r);
+  const V excess = hn::IfThenElse(hn::Gt(excess0, zero), excess0, zero);
+  depth = hn::Add(tSil, hn::Mul(hn::Set(d, fc.contourEta), excess));
+  const V pixelScale = hn::Set(d, fc.pixelScale);
+  const V footprint = kOrtho ? pixelScale : hn::Mul(pixelScale, tSil);
+  const V ramp =
+      hn::IfThenElse(hn::And(hn::Gt(footprint, zero), hn::Lt(footprint, xi)), footprint, xi);
+  const V w = hn::Div(excess, ramp);
+  weight = hn::IfThenElse(hn::Lt(w, one), w, one);
+  invDist = hn::Div(one, dist);
+  const auto inRing = hn::And(hn::Lt(disc, zero), hn::Ge(discOut, zero));
+  return hn::And(inRing, hn::And(hn::Ge(depth, hn::Set(d, fc.nearPlane)),
+                                 hn::Le(depth, hn::Set(d, fc.farPlane))));
+}
+
 // One vector of a sphere row: twin of SpherePixel (sphere_hit.inc), HitPoint, SphereNormal
 // and MulRows (attributes.inc). Returns true when a lane was kept.
-template <bool kOrtho, class D>
+template <bool kOrtho, bool kEdges, class D>
 HWY_INLINE bool SphereVector(D d, const detail::FrameConstants& fc, const detail::SpherePrim& s,
                              const shared::SphereRow& row, float v, const PixelBox& c, int x, int y,
                              detail::TileView& t, detail::TileCounters& k) {
@@ -116,29 +163,54 @@ HWY_INLINE bool SphereVector(D d, const detail::FrameConstants& fc, const detail
     B = hn::Add(hn::Mul(u, cx), hn::Set(d, row.bRow));
     a = hn::Add(hn::Mul(u, u), hn::Set(d, row.aRow));
   }
-  const V disc = hn::Sub(
-      hn::Mul(a, hn::Set(d, s.rr)),
-      hn::Add(hn::Add(hn::Mul(crossX, crossX), hn::Mul(crossY, crossY)), hn::Mul(crossZ, crossZ)));
+  const V X =
+      hn::Add(hn::Add(hn::Mul(crossX, crossX), hn::Mul(crossY, crossY)), hn::Mul(crossZ, crossZ));
+  const V disc = hn::Sub(hn::Mul(a, hn::Set(d, s.rr)), X);
   V tNear, tFar;
   SolveQuadratic<kOrtho>(d, a, B, hn::Set(d, s.c0), disc, tNear, tFar);
   const V nearPlane = hn::Set(d, fc.nearPlane), farPlane = hn::Set(d, fc.farPlane);
   const auto okNear = hn::And(hn::Ge(tNear, nearPlane), hn::Le(tNear, farPlane));
   const auto okFar = hn::And(hn::Ge(tFar, nearPlane), hn::Le(tFar, farPlane));
-  const auto covered = hn::And(hn::Ge(disc, zero), hn::Or(okNear, okFar));
-  const V depth = hn::IfThenElse(okNear, tNear, tFar);
+  auto covered = hn::And(hn::Ge(disc, zero), hn::Or(okNear, okFar));
+  V depth = hn::IfThenElse(okNear, tNear, tFar);
+  // Edge cueing (compiled out of the default kernel): caps and contour lines.
+  auto capped = hn::Lt(zero, zero), line = capped;
+  V tPoint = depth, inv = hn::Set(d, s.invR), lineWeight = zero;
+  if constexpr (kEdges) {
+    if (fc.capping) {
+      const auto cut = hn::And(hn::Lt(tNear, nearPlane), hn::Ge(tFar, nearPlane));
+      covered = hn::And(hn::Ge(disc, zero), hn::Or(okNear, cut));
+      capped = hn::And(covered, hn::And(hn::Not(okNear), cut));
+      depth = hn::IfThenElse(
+          okNear, tNear, hn::IfThenElse(cut, CapDepth(tNear, nearPlane, hn::Set(d, fc.capEps)), tFar));
+      tPoint = depth;
+    }
+    if (fc.contour) {
+      V lineDepth, tSil, invDist;
+      line = ContourLanes<kOrtho>(d, fc, X, a, B, disc, s.r, lineDepth, tSil, invDist, lineWeight);
+      covered = hn::Or(covered, line);
+      depth = hn::IfThenElse(line, lineDepth, depth);
+      tPoint = hn::IfThenElse(line, tSil, tPoint);
+      inv = hn::IfThenElse(line, invDist, inv);
+    }
+  }
   const auto keep = hn::And(test, hn::And(covered, hn::Lt(depth, stored)));
   if (hn::AllFalse(d, keep)) return false;
   k.fragmentsKept += hn::CountTrue(d, keep);
 
-  // HitPoint + SphereNormal.
+  // HitPoint + SphereNormal (at the closest approach, over 1/d, for line lanes).
   const V vv = hn::Set(d, v);
-  const V hx = kOrtho ? u : hn::Mul(depth, u);
-  const V hy = kOrtho ? vv : hn::Mul(depth, vv);
-  const V hz = hn::Neg(depth);
-  const V invR = hn::Set(d, s.invR);
-  const V nx = hn::Mul(hn::Sub(hx, cx), invR);
-  const V ny = hn::Mul(hn::Sub(hy, cy), invR);
-  const V nz = hn::Mul(hn::Sub(hz, cz), invR);
+  const V hx = kOrtho ? u : hn::Mul(tPoint, u);
+  const V hy = kOrtho ? vv : hn::Mul(tPoint, vv);
+  const V hz = hn::Neg(tPoint);
+  V nx = hn::Mul(hn::Sub(hx, cx), inv);
+  V ny = hn::Mul(hn::Sub(hy, cy), inv);
+  V nz = hn::Mul(hn::Sub(hz, cz), inv);
+  if constexpr (kEdges) {  // cap normal (0, 0, 1)
+    nx = hn::IfThenElse(capped, zero, nx);
+    ny = hn::IfThenElse(capped, zero, ny);
+    nz = hn::IfThenElse(capped, hn::Set(d, 1.0f), nz);
+  }
   V su = zero, sv = zero, sw = zero;
   if (fc.channels & kSurfaceCoord) {  // MulRows: eye → world normal
     const float* m = fc.viewToWorld;
@@ -147,13 +219,14 @@ HWY_INLINE bool SphereVector(D d, const detail::FrameConstants& fc, const detail
     sw = Dot3(hn::Set(d, m[6]), hn::Set(d, m[7]), hn::Set(d, m[8]), nx, ny, nz);
   }
   const hn::RebindToUnsigned<D> du;
-  Write(d, fc, t, i, keep, depth, nx, ny, nz, hn::Set(du, s.color), s.id, su, sv, sw);
+  Write<kEdges>(d, fc, t, i, keep, depth, nx, ny, nz, hn::Set(du, s.color), s.id, su, sv, sw,
+        hn::IfThenElseZero(line, lineWeight), hn::IfThenElseZero(capped, hn::Set(d, 1.0f)));
   return true;
 }
 
 // One vector of a cylinder row: twin of CylinderPixel (cylinder_hit.inc), HitPoint,
 // CylinderNormal and the surface coordinates (attributes.inc).
-template <bool kOrtho, class D>
+template <bool kOrtho, bool kEdges, class D>
 HWY_INLINE bool CylinderVector(D d, const detail::FrameConstants& fc, const detail::CylinderPrim& p,
                                const shared::CylinderRow& row, float v, const PixelBox& c, int x,
                                int y, detail::TileView& t, detail::TileCounters& k) {
@@ -188,7 +261,8 @@ HWY_INLINE bool CylinderVector(D d, const detail::FrameConstants& fc, const deta
   }
   const auto aPositive = hn::Gt(a, zero);
   const V aSafe = hn::IfThenElse(aPositive, a, hn::Set(d, 1.0f));
-  const V disc = hn::Sub(hn::Mul(a, hn::Set(d, p.rr)), hn::Mul(E, E));
+  const V X = hn::Mul(E, E);
+  const V disc = hn::Sub(hn::Mul(a, hn::Set(d, p.rr)), X);
   V tNear, tFar;
   SolveQuadratic<kOrtho>(d, aSafe, B, hn::Set(d, p.c0), disc, tNear, tFar);
   const V sNear = hn::Sub(hn::Mul(tNear, F), pwRel);
@@ -199,22 +273,55 @@ HWY_INLINE bool CylinderVector(D d, const detail::FrameConstants& fc, const deta
                               hn::And(hn::Ge(sNear, zero), hn::Le(sNear, len)));
   const auto okFar = hn::And(hn::And(hn::Ge(tFar, nearPlane), hn::Le(tFar, farPlane)),
                              hn::And(hn::Ge(sFar, zero), hn::Le(sFar, len)));
-  const auto covered = hn::And(hn::And(aPositive, hn::Ge(disc, zero)), hn::Or(okNear, okFar));
-  const V depth = hn::IfThenElse(okNear, tNear, tFar);
-  const V axial = hn::IfThenElse(okNear, sNear, sFar);
+  const auto hit = hn::And(aPositive, hn::Ge(disc, zero));
+  auto covered = hn::And(hit, hn::Or(okNear, okFar));
+  V depth = hn::IfThenElse(okNear, tNear, tFar);
+  V axial = hn::IfThenElse(okNear, sNear, sFar);
+  // Edge cueing (compiled out of the default kernel): caps and contour lines.
+  auto capped = hn::Lt(zero, zero), line = capped;
+  V tPoint = depth, inv = hn::Set(d, p.invR), lineWeight = zero;
+  if constexpr (kEdges) {
+    if (fc.capping) {
+      const V sCap = hn::Sub(hn::Mul(nearPlane, F), pwRel);
+      const auto cut = hn::And(hn::And(hn::Lt(tNear, nearPlane), hn::Ge(tFar, nearPlane)),
+                               hn::And(hn::Ge(sCap, zero), hn::Le(sCap, len)));
+      covered = hn::And(hit, hn::Or(hn::Or(okNear, cut), okFar));
+      capped = hn::And(covered, hn::And(hn::Not(okNear), cut));
+      depth = hn::IfThenElse(
+          okNear, tNear, hn::IfThenElse(cut, CapDepth(tNear, nearPlane, hn::Set(d, fc.capEps)), tFar));
+      axial = hn::IfThenElse(okNear, sNear, hn::IfThenElse(cut, sCap, sFar));
+      tPoint = depth;
+    }
+    if (fc.contour) {  // twin of CylinderContour (cylinder_hit.inc)
+      V lineDepth, tSil, invDist;
+      line = ContourLanes<kOrtho>(d, fc, X, aSafe, B, disc, p.r, lineDepth, tSil, invDist,
+                                  lineWeight);
+      const V sSil = hn::Sub(hn::Mul(tSil, F), pwRel);
+      line = hn::And(line, hn::And(aPositive, hn::And(hn::Ge(sSil, zero), hn::Le(sSil, len))));
+      covered = hn::Or(covered, line);
+      depth = hn::IfThenElse(line, lineDepth, depth);
+      axial = hn::IfThenElse(line, sSil, axial);
+      tPoint = hn::IfThenElse(line, tSil, tPoint);
+      inv = hn::IfThenElse(line, invDist, inv);
+    }
+  }
   const auto keep = hn::And(test, hn::And(covered, hn::Lt(depth, stored)));
   if (hn::AllFalse(d, keep)) return false;
   k.fragmentsKept += hn::CountTrue(d, keep);
 
-  // HitPoint + CylinderNormal.
+  // HitPoint + CylinderNormal (at the closest approach, over 1/d, for line lanes).
   const V vv = hn::Set(d, v);
-  const V hx = kOrtho ? u : hn::Mul(depth, u);
-  const V hy = kOrtho ? vv : hn::Mul(depth, vv);
-  const V hz = hn::Neg(depth);
-  const V invR = hn::Set(d, p.invR);
-  const V nx = hn::Mul(hn::Sub(hn::Sub(hx, hn::Set(d, p.px)), hn::Mul(axial, wx)), invR);
-  const V ny = hn::Mul(hn::Sub(hn::Sub(hy, hn::Set(d, p.py)), hn::Mul(axial, wy)), invR);
-  const V nz = hn::Mul(hn::Sub(hn::Sub(hz, hn::Set(d, p.pz)), hn::Mul(axial, wz)), invR);
+  const V hx = kOrtho ? u : hn::Mul(tPoint, u);
+  const V hy = kOrtho ? vv : hn::Mul(tPoint, vv);
+  const V hz = hn::Neg(tPoint);
+  V nx = hn::Mul(hn::Sub(hn::Sub(hx, hn::Set(d, p.px)), hn::Mul(axial, wx)), inv);
+  V ny = hn::Mul(hn::Sub(hn::Sub(hy, hn::Set(d, p.py)), hn::Mul(axial, wy)), inv);
+  V nz = hn::Mul(hn::Sub(hn::Sub(hz, hn::Set(d, p.pz)), hn::Mul(axial, wz)), inv);
+  if constexpr (kEdges) {  // cap normal (0, 0, 1)
+    nx = hn::IfThenElse(capped, zero, nx);
+    ny = hn::IfThenElse(capped, zero, ny);
+    nz = hn::IfThenElse(capped, hn::Set(d, 1.0f), nz);
+  }
   V su = zero, sv = zero, sw = zero;
   if (fc.channels & kSurfaceCoord) {
     su = hn::Mul(axial, hn::Set(d, p.invLen));
@@ -224,7 +331,8 @@ HWY_INLINE bool CylinderVector(D d, const detail::FrameConstants& fc, const deta
   const hn::RebindToUnsigned<D> du;
   const auto first = hn::RebindMask(du, hn::Lt(axial, hn::Set(d, p.halfLen)));
   const auto color = hn::IfThenElse(first, hn::Set(du, p.color0), hn::Set(du, p.color1));
-  Write(d, fc, t, i, keep, depth, nx, ny, nz, color, p.id, su, sv, sw);
+  Write<kEdges>(d, fc, t, i, keep, depth, nx, ny, nz, color, p.id, su, sv, sw,
+        hn::IfThenElseZero(line, lineWeight), hn::IfThenElseZero(capped, hn::Set(d, 1.0f)));
   return true;
 }
 
@@ -238,7 +346,7 @@ HWY_INLINE void Lin3(D d, V s, const float* k, const shared::Float3& c, V& x, V&
 
 // One vector of an ellipsoid row: twin of EllipsoidPixel, EllipsoidParam and
 // EllipsoidNormal (ellipsoid_hit.inc).
-template <bool kOrtho, class D>
+template <bool kOrtho, bool kEdges, class D>
 HWY_INLINE bool EllipsoidVector(D d, const detail::FrameConstants& fc,
                                 const detail::EllipsoidPrim& e, const shared::EllipsoidRow& row,
                                 float /*v*/, const PixelBox& c, int x, int y, detail::TileView& t,
@@ -266,27 +374,45 @@ HWY_INLINE bool EllipsoidVector(D d, const detail::FrameConstants& fc,
   const V nearPlane = hn::Set(d, fc.nearPlane), farPlane = hn::Set(d, fc.farPlane);
   const auto okNear = hn::And(hn::Ge(tNear, nearPlane), hn::Le(tNear, farPlane));
   const auto okFar = hn::And(hn::Ge(tFar, nearPlane), hn::Le(tFar, farPlane));
-  const auto covered = hn::And(hn::And(aPositive, hn::Ge(disc, zero)), hn::Or(okNear, okFar));
-  const V depth = hn::IfThenElse(okNear, tNear, tFar);
+  auto covered = hn::And(hn::And(aPositive, hn::Ge(disc, zero)), hn::Or(okNear, okFar));
+  V depth = hn::IfThenElse(okNear, tNear, tFar);
+  auto capped = hn::Lt(zero, zero);
+  V tParam = depth;
+  if constexpr (kEdges) {
+    if (fc.capping) {  // near-plane caps (Tarini et al. §5.3); ellipsoids get no contour lines
+      const auto cut = hn::And(hn::Lt(tNear, nearPlane), hn::Ge(tFar, nearPlane));
+      covered = hn::And(hn::And(aPositive, hn::Ge(disc, zero)), hn::Or(okNear, cut));
+      capped = hn::And(covered, hn::And(hn::Not(okNear), cut));
+      depth = hn::IfThenElse(
+          okNear, tNear, hn::IfThenElse(cut, CapDepth(tNear, nearPlane, hn::Set(d, fc.capEps)), tFar));
+      tParam = hn::IfThenElse(capped, nearPlane, depth);
+    }
+  }
   const auto keep = hn::And(test, hn::And(covered, hn::Lt(depth, stored)));
   if (hn::AllFalse(d, keep)) return false;
   k.fragmentsKept += hn::CountTrue(d, keep);
 
-  // EllipsoidParam: x_p = t·d' + p'.
+  // EllipsoidParam: x_p = t·d' + p' (for a cap, the ray's point on the plane).
   V px, py, pz;
   Lin3(d, u, e.Pu, row.p, px, py, pz);
-  const V xpx = hn::Add(hn::Mul(depth, dx), px);
-  const V xpy = hn::Add(hn::Mul(depth, dy), py);
-  const V xpz = hn::Add(hn::Mul(depth, dz), pz);
+  const V xpx = hn::Add(hn::Mul(tParam, dx), px);
+  const V xpy = hn::Add(hn::Mul(tParam, dy), py);
+  const V xpz = hn::Add(hn::Mul(tParam, dz), pz);
   // EllipsoidNormal: normalize(Mᵀ x_p).
   const float* m = e.mt;
   const V gx = Dot3(hn::Set(d, m[0]), hn::Set(d, m[1]), hn::Set(d, m[2]), xpx, xpy, xpz);
   const V gy = Dot3(hn::Set(d, m[3]), hn::Set(d, m[4]), hn::Set(d, m[5]), xpx, xpy, xpz);
   const V gz = Dot3(hn::Set(d, m[6]), hn::Set(d, m[7]), hn::Set(d, m[8]), xpx, xpy, xpz);
   const V inv = hn::Div(hn::Set(d, 1.0f), hn::Sqrt(Dot3(gx, gy, gz, gx, gy, gz)));
-  const V nx = hn::Mul(gx, inv), ny = hn::Mul(gy, inv), nz = hn::Mul(gz, inv);
+  V nx = hn::Mul(gx, inv), ny = hn::Mul(gy, inv), nz = hn::Mul(gz, inv);
+  if constexpr (kEdges) {  // cap normal (0, 0, 1)
+    nx = hn::IfThenElse(capped, zero, nx);
+    ny = hn::IfThenElse(capped, zero, ny);
+    nz = hn::IfThenElse(capped, hn::Set(d, 1.0f), nz);
+  }
   const hn::RebindToUnsigned<D> du;
-  Write(d, fc, t, i, keep, depth, nx, ny, nz, hn::Set(du, e.color), e.id, xpx, xpy, xpz);
+  Write<kEdges>(d, fc, t, i, keep, depth, nx, ny, nz, hn::Set(du, e.color), e.id, xpx, xpy, xpz, zero,
+        hn::IfThenElseZero(capped, hn::Set(d, 1.0f)));
   return true;
 }
 
@@ -338,7 +464,7 @@ HWY_INLINE void DrawRows(const detail::FrameConstants& fc, const Prim& prim, con
   if (drew) detail::UpdateTileMax(t);
 }
 
-template <bool kOrtho>
+template <bool kOrtho, bool kEdges>
 void RasterizeTileT(const detail::FrameConstants& fc, const detail::PrimArrays& prims,
                     std::span<const detail::BinEntry> entries, detail::TileView& t,
                     detail::TileCounters& k) {
@@ -373,10 +499,10 @@ void RasterizeTileT(const detail::FrameConstants& fc, const detail::PrimArrays& 
       DrawRows<kOrtho, detail::SpherePrim, shared::SphereRow>(
           fc, s, c, t, [&](float v) { return shared::SphereRowSetup(kOrtho, v, s.cx, s.cy, s.cz); },
           [&](const shared::SphereRow& row, float v, int x, int y) {
-            return SphereVector<kOrtho>(d, fc, s, row, v, c, x, y, t, k);
+            return SphereVector<kOrtho, kEdges>(d, fc, s, row, v, c, x, y, t, k);
           },
           [&](const shared::SphereRow& row, float v, int x, int y) {
-            return SphereVector<kOrtho>(d1, fc, s, row, v, c, x, y, t, k);
+            return SphereVector<kOrtho, kEdges>(d1, fc, s, row, v, c, x, y, t, k);
           });
     } else if ((e.code >> detail::kKindShift) == detail::kEllipsoidKind) {
       const detail::EllipsoidPrim& q = prims.ellipsoids[index];
@@ -392,10 +518,10 @@ void RasterizeTileT(const detail::FrameConstants& fc, const detail::PrimArrays& 
                                              f3(q.Pv), f3(q.P0));
           },
           [&](const shared::EllipsoidRow& row, float v, int x, int y) {
-            return EllipsoidVector<kOrtho>(d, fc, q, row, v, c, x, y, t, k);
+            return EllipsoidVector<kOrtho, kEdges>(d, fc, q, row, v, c, x, y, t, k);
           },
           [&](const shared::EllipsoidRow& row, float v, int x, int y) {
-            return EllipsoidVector<kOrtho>(d1, fc, q, row, v, c, x, y, t, k);
+            return EllipsoidVector<kOrtho, kEdges>(d1, fc, q, row, v, c, x, y, t, k);
           });
     } else {
       const detail::CylinderPrim& p = prims.cylinders[index];
@@ -406,10 +532,10 @@ void RasterizeTileT(const detail::FrameConstants& fc, const detail::PrimArrays& 
                                             p.pw);
           },
           [&](const shared::CylinderRow& row, float v, int x, int y) {
-            return CylinderVector<kOrtho>(d, fc, p, row, v, c, x, y, t, k);
+            return CylinderVector<kOrtho, kEdges>(d, fc, p, row, v, c, x, y, t, k);
           },
           [&](const shared::CylinderRow& row, float v, int x, int y) {
-            return CylinderVector<kOrtho>(d1, fc, p, row, v, c, x, y, t, k);
+            return CylinderVector<kOrtho, kEdges>(d1, fc, p, row, v, c, x, y, t, k);
           });
     }
   }

@@ -14,10 +14,15 @@ void RasterizeTileImpl(const detail::FrameConstants& frame, const detail::PrimAr
                        std::span<const detail::BinEntry> entries, detail::TileView& tile,
                        detail::TileCounters& counters) {
   detail::ClearTile(frame, tile);
+  // Edge cueing gets its own instantiations, so the default kernel is exactly the code it
+  // was without it (same bits, no extra work per lane).
+  const bool edges = frame.contour || frame.capping;
   if (frame.ortho) {
-    RasterizeTileT<true>(frame, prims, entries, tile, counters);
+    if (edges) RasterizeTileT<true, true>(frame, prims, entries, tile, counters);
+    else RasterizeTileT<true, false>(frame, prims, entries, tile, counters);
   } else {
-    RasterizeTileT<false>(frame, prims, entries, tile, counters);
+    if (edges) RasterizeTileT<false, true>(frame, prims, entries, tile, counters);
+    else RasterizeTileT<false, false>(frame, prims, entries, tile, counters);
   }
 }
 

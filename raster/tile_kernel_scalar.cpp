@@ -16,9 +16,14 @@ Float3 F3(float x, float y, float z) {
   return f;
 }
 
+// The eye-space normal of a near-plane cap (Tarini et al. §5.3): facing the eye.
+Float3 CapNormal() { return F3(0.0f, 0.0f, 1.0f); }
+
 void WriteCommon(const FrameConstants& fc, TileView& t, size_t i, float depth, Float3 n,
-                 uint32_t color, uint32_t id, Float3 surface) {
+                 uint32_t color, uint32_t id, Float3 surface, float line, bool capped) {
   t.depth[i] = depth;
+  if (fc.channels & kLine) t.line[i] = line;
+  if (fc.channels & kCapped) t.capped[i] = capped ? 1.0f : 0.0f;
   if (fc.channels & kNormal) t.normalX[i] = n.x, t.normalY[i] = n.y, t.normalZ[i] = n.z;
   if (fc.channels & kBaseColor) t.baseColor[i] = color;
   if (fc.channels & kPrimitiveId) t.primitiveId[i] = id;
@@ -43,14 +48,30 @@ void DrawSphere(const FrameConstants& fc, const SpherePrim& s, const PixelBox& c
       if (!(stored >= s.zMin)) continue;
       ++k.fragmentsTested;
       const float u = shared::PixelToRay(float(x), fc.halfWidth, fc.pixelScale);
-      const shared::SphereFragment f = shared::SpherePixel(fc.ortho, u, row, s.cx, s.cy, s.cz, s.rr,
-                                                           s.c0, fc.nearPlane, fc.farPlane);
-      if (!(f.covered && f.depth < stored)) continue;
+      const shared::SphereFragment f =
+          shared::SpherePixel(fc.ortho, u, row, s.cx, s.cy, s.cz, s.rr, s.c0, fc.nearPlane,
+                              fc.farPlane, fc.capping, fc.capEps);
+      // Contour line (§5.1): only where the ray misses the sphere, so never over a hit.
+      shared::ContourFragment line{};  // covered = false
+      if (fc.contour)
+        line = shared::ContourPixel(fc.ortho, f.X, f.a, f.B, f.disc, s.r, fc.contourWidth,
+                                    fc.contourEta, fc.pixelScale, fc.nearPlane, fc.farPlane);
+      const float depth = line.covered ? line.depth : f.depth;
+      if (!((f.covered || line.covered) && depth < stored)) continue;
       ++k.fragmentsKept;
       any = true;
-      const Float3 hit = shared::HitPoint(fc.ortho, u, v, f.depth);
-      const Float3 n = shared::SphereNormal(hit, s.cx, s.cy, s.cz, s.invR);
-      WriteCommon(fc, t, i, f.depth, n, s.color, s.id, shared::MulRows(r0, r1, r2, n));
+      Float3 n;
+      if (line.covered) {  // silhouette normal: from the centre to the closest point of the ray
+        n = shared::SphereNormal(shared::HitPoint(fc.ortho, u, v, line.tSil), s.cx, s.cy, s.cz,
+                                 line.invDist);
+      } else if (f.capped) {
+        n = CapNormal();
+      } else {
+        n = shared::SphereNormal(shared::HitPoint(fc.ortho, u, v, f.depth), s.cx, s.cy, s.cz,
+                                 s.invR);
+      }
+      WriteCommon(fc, t, i, depth, n, s.color, s.id, shared::MulRows(r0, r1, r2, n),
+                  line.covered ? line.weight : 0.0f, f.capped);
     }
     if (any) UpdateRowMax(t, y);
     drew |= any;
@@ -74,17 +95,31 @@ void DrawCylinder(const FrameConstants& fc, const CylinderPrim& p, const PixelBo
       if (!(stored >= p.zMin)) continue;
       ++k.fragmentsTested;
       const float u = shared::PixelToRay(float(x), fc.halfWidth, fc.pixelScale);
-      const shared::CylinderFragment f =
-          shared::CylinderPixel(fc.ortho, u, row, p.px, p.wx, p.wy, p.wz, p.mx, p.pw, p.rr, p.c0,
-                                p.len, p.aOrtho, fc.nearPlane, fc.farPlane);
-      if (!(f.covered && f.depth < stored)) continue;
+      const shared::CylinderFragment f = shared::CylinderPixel(
+          fc.ortho, u, row, p.px, p.wx, p.wy, p.wz, p.mx, p.pw, p.rr, p.c0, p.len, p.aOrtho,
+          fc.nearPlane, fc.farPlane, fc.capping, fc.capEps);
+      shared::ContourFragment line{};  // covered = false
+      if (fc.contour)
+        line = shared::CylinderContour(fc.ortho, f, p.r, p.len, fc.contourWidth, fc.contourEta,
+                                       fc.pixelScale, fc.nearPlane, fc.farPlane);
+      const float depth = line.covered ? line.depth : f.depth;
+      if (!((f.covered || line.covered) && depth < stored)) continue;
       ++k.fragmentsKept;
       any = true;
-      const Float3 hit = shared::HitPoint(fc.ortho, u, v, f.depth);
-      const Float3 n =
-          shared::CylinderNormal(hit, p.px, p.py, p.pz, p.wx, p.wy, p.wz, f.axial, p.invR);
-      const Float3 surface = F3(f.axial * p.invLen, shared::Dot3(n, e1), shared::Dot3(n, e2));
-      WriteCommon(fc, t, i, f.depth, n, f.axial < p.halfLen ? p.color0 : p.color1, p.id, surface);
+      const float axial = line.covered ? line.axial : f.axial;
+      Float3 n;
+      if (line.covered) {  // silhouette normal: from the axis to the closest point of the ray
+        n = shared::CylinderNormal(shared::HitPoint(fc.ortho, u, v, line.tSil), p.px, p.py, p.pz,
+                                   p.wx, p.wy, p.wz, axial, line.invDist);
+      } else if (f.capped) {
+        n = CapNormal();
+      } else {
+        n = shared::CylinderNormal(shared::HitPoint(fc.ortho, u, v, f.depth), p.px, p.py, p.pz,
+                                   p.wx, p.wy, p.wz, axial, p.invR);
+      }
+      const Float3 surface = F3(axial * p.invLen, shared::Dot3(n, e1), shared::Dot3(n, e2));
+      WriteCommon(fc, t, i, depth, n, axial < p.halfLen ? p.color0 : p.color1, p.id, surface,
+                  line.covered ? line.weight : 0.0f, f.capped);
     }
     if (any) UpdateRowMax(t, y);
     drew |= any;
@@ -112,13 +147,15 @@ void DrawEllipsoid(const FrameConstants& fc, const EllipsoidPrim& e, const Pixel
       ++k.fragmentsTested;
       const float u = shared::PixelToRay(float(x), fc.halfWidth, fc.pixelScale);
       const shared::EllipsoidFragment f =
-          shared::EllipsoidPixel(fc.ortho, u, row, Du, Xu, e.Bu, e.c0, fc.nearPlane, fc.farPlane);
+          shared::EllipsoidPixel(fc.ortho, u, row, Du, Xu, e.Bu, e.c0, fc.nearPlane, fc.farPlane,
+                                 fc.capping, fc.capEps);
       if (!(f.covered && f.depth < stored)) continue;
       ++k.fragmentsKept;
       any = true;
-      const Float3 xp = shared::EllipsoidParam(u, row, Du, Pu, f.depth);
-      const Float3 n = shared::EllipsoidNormal(xp, mt0, mt1, mt2);
-      WriteCommon(fc, t, i, f.depth, n, e.color, e.id, xp);
+      // A cap's parameter-space point is the ray's point on the plane (inside the ellipsoid).
+      const Float3 xp = shared::EllipsoidParam(u, row, Du, Pu, f.capped ? fc.nearPlane : f.depth);
+      const Float3 n = f.capped ? CapNormal() : shared::EllipsoidNormal(xp, mt0, mt1, mt2);
+      WriteCommon(fc, t, i, f.depth, n, e.color, e.id, xp, 0.0f, f.capped);
     }
     if (any) UpdateRowMax(t, y);
     drew |= any;

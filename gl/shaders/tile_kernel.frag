@@ -1,7 +1,9 @@
 // gl/shaders/tile_kernel.frag — GL twin of the tile kernel (raster/tile_kernel_scalar.cpp):
 // fetch the primitive's setup constants, call the shared formulas (raster/shared/*.inc, the
 // same text the CPU compiles), store the G-buffer channels. Thin by design: no arithmetic
-// here beyond what the scalar twin does between its calls.
+// here beyond what the scalar twin does between its calls. Edge cueing (contour lines,
+// near-plane caps: Tarini et al. 2006 §5.1, §5.3) follows the scalar twin's order of calls;
+// its line weight and capped flag go to attachment 5 (RG32F).
 //
 // Depth test: the CPU keeps the first primitive, in its front-to-back draw order, whose depth
 // is strictly less than the stored one. GL does the same with GL_LESS and the same draw order
@@ -21,6 +23,12 @@ uniform float uFarPlane;
 uniform bool uOrtho;
 uniform float uViewToWorld[9];
 uniform float uDepthScale;
+// Edge cueing (Tarini et al. 2006 §5.1, §5.3), raster::detail::FrameConstants.
+uniform bool uContour;
+uniform float uContourWidth;
+uniform float uContourEta;
+uniform bool uCapping;
+uniform float uCapEps;
 
 flat in uint vCode;
 
@@ -29,6 +37,7 @@ layout(location = 1) out vec4 oNormal;
 layout(location = 2) out uint oBaseColor;
 layout(location = 3) out uint oPrimitiveId;
 layout(location = 4) out vec4 oSurface;
+layout(location = 5) out vec2 oEdges;  // line weight, capped
 
 float SphereF(uint base, uint field) { return uintBitsToFloat(uSpheres[base + field]); }
 float CylinderF(uint base, uint field) { return uintBitsToFloat(uCylinders[base + field]); }
@@ -48,8 +57,12 @@ Float3 MakeFloat3(float x, float y, float z) {
     return f;
 }
 
-void Store(float depth, Float3 n, uint color, uint id, Float3 surface) {
+// The eye-space normal of a near-plane cap (Tarini et al. §5.3): facing the eye.
+Float3 CapNormal() { return MakeFloat3(0.0f, 0.0f, 1.0f); }
+
+void Store(float depth, Float3 n, uint color, uint id, Float3 surface, float line, bool capped) {
     oDepth = depth;
+    oEdges = vec2(line, capped ? 1.0f : 0.0f);
     oNormal = vec4(n.x, n.y, n.z, 0.0f);
     oBaseColor = color;
     oPrimitiveId = id;
@@ -73,15 +86,28 @@ void main() {
         float cz = SphereF(b, dSpherePrim_cz);
         SphereRow row = SphereRowSetup(uOrtho, v, cx, cy, cz);
         SphereFragment f = SpherePixel(uOrtho, u, row, cx, cy, cz, SphereF(b, dSpherePrim_rr),
-                                       SphereF(b, dSpherePrim_c0), uNearPlane, uFarPlane);
-        if (!f.covered) discard;
-        Float3 hit = HitPoint(uOrtho, u, v, f.depth);
-        Float3 n = SphereNormal(hit, cx, cy, cz, SphereF(b, dSpherePrim_invR));
+                                       SphereF(b, dSpherePrim_c0), uNearPlane, uFarPlane, uCapping, uCapEps);
+        // Contour line (§5.1): only where the ray misses the sphere, so never over a hit.
+        ContourFragment line;
+        line.covered = false;
+        if (uContour)
+            line = ContourPixel(uOrtho, f.X, f.a, f.B, f.disc, SphereF(b, dSpherePrim_r), uContourWidth,
+                                uContourEta, uPixelScale, uNearPlane, uFarPlane);
+        if (!(f.covered || line.covered)) discard;
+        float depth = line.covered ? line.depth : f.depth;
+        Float3 n;
+        if (line.covered) {
+            n = SphereNormal(HitPoint(uOrtho, u, v, line.tSil), cx, cy, cz, line.invDist);
+        } else if (f.capped) {
+            n = CapNormal();
+        } else {
+            n = SphereNormal(HitPoint(uOrtho, u, v, f.depth), cx, cy, cz, SphereF(b, dSpherePrim_invR));
+        }
         Float3 r0 = MakeFloat3(uViewToWorld[0], uViewToWorld[1], uViewToWorld[2]);
         Float3 r1 = MakeFloat3(uViewToWorld[3], uViewToWorld[4], uViewToWorld[5]);
         Float3 r2 = MakeFloat3(uViewToWorld[6], uViewToWorld[7], uViewToWorld[8]);
-        Store(f.depth, n, uSpheres[b + dSpherePrim_color], uSpheres[b + dSpherePrim_id],
-              MulRows(r0, r1, r2, n));
+        Store(depth, n, uSpheres[b + dSpherePrim_color], uSpheres[b + dSpherePrim_id],
+              MulRows(r0, r1, r2, n), line.covered ? line.weight : 0.0f, f.capped);
     } else if (kind == dCylinderKind) {
         uint b = index * dCylinderPrim_stride;
         float ppx = CylinderF(b, dCylinderPrim_px);
@@ -95,18 +121,34 @@ void main() {
         CylinderFragment f = CylinderPixel(uOrtho, u, row, ppx, wx, wy, wz, CylinderF(b, dCylinderPrim_mx),
                                            CylinderF(b, dCylinderPrim_pw), CylinderF(b, dCylinderPrim_rr),
                                            CylinderF(b, dCylinderPrim_c0), CylinderF(b, dCylinderPrim_len),
-                                           CylinderF(b, dCylinderPrim_aOrtho), uNearPlane, uFarPlane);
-        if (!f.covered) discard;
-        Float3 hit = HitPoint(uOrtho, u, v, f.depth);
-        Float3 n = CylinderNormal(hit, ppx, ppy, ppz, wx, wy, wz, f.axial, CylinderF(b, dCylinderPrim_invR));
+                                           CylinderF(b, dCylinderPrim_aOrtho), uNearPlane, uFarPlane,
+                                           uCapping, uCapEps);
+        ContourFragment line;
+        line.covered = false;
+        if (uContour)
+            line = CylinderContour(uOrtho, f, CylinderF(b, dCylinderPrim_r), CylinderF(b, dCylinderPrim_len),
+                                   uContourWidth, uContourEta, uPixelScale, uNearPlane, uFarPlane);
+        if (!(f.covered || line.covered)) discard;
+        float depth = line.covered ? line.depth : f.depth;
+        float axial = line.covered ? line.axial : f.axial;
+        Float3 n;
+        if (line.covered) {
+            n = CylinderNormal(HitPoint(uOrtho, u, v, line.tSil), ppx, ppy, ppz, wx, wy, wz, axial, line.invDist);
+        } else if (f.capped) {
+            n = CapNormal();
+        } else {
+            n = CylinderNormal(HitPoint(uOrtho, u, v, f.depth), ppx, ppy, ppz, wx, wy, wz, axial,
+                               CylinderF(b, dCylinderPrim_invR));
+        }
         Float3 e1 = MakeFloat3(CylinderF(b, dCylinderPrim_e1x), CylinderF(b, dCylinderPrim_e1y),
                                CylinderF(b, dCylinderPrim_e1z));
         Float3 e2 = MakeFloat3(CylinderF(b, dCylinderPrim_e2x), CylinderF(b, dCylinderPrim_e2y),
                                CylinderF(b, dCylinderPrim_e2z));
-        Float3 surface = MakeFloat3(f.axial * CylinderF(b, dCylinderPrim_invLen), Dot3(n, e1), Dot3(n, e2));
-        uint color = f.axial < CylinderF(b, dCylinderPrim_halfLen) ? uCylinders[b + dCylinderPrim_color0]
-                                                                   : uCylinders[b + dCylinderPrim_color1];
-        Store(f.depth, n, color, uCylinders[b + dCylinderPrim_id], surface);
+        Float3 surface = MakeFloat3(axial * CylinderF(b, dCylinderPrim_invLen), Dot3(n, e1), Dot3(n, e2));
+        uint color = axial < CylinderF(b, dCylinderPrim_halfLen) ? uCylinders[b + dCylinderPrim_color0]
+                                                                 : uCylinders[b + dCylinderPrim_color1];
+        Store(depth, n, color, uCylinders[b + dCylinderPrim_id], surface, line.covered ? line.weight : 0.0f,
+              f.capped);
     } else {
         uint b = index * dEllipsoidPrim_stride;
         Float3 Du = EllipsoidF3(b, dEllipsoidPrim_Du);
@@ -117,11 +159,15 @@ void main() {
                                              EllipsoidF(b, dEllipsoidPrim_Bv), EllipsoidF(b, dEllipsoidPrim_B0),
                                              EllipsoidF3(b, dEllipsoidPrim_Pv), EllipsoidF3(b, dEllipsoidPrim_P0));
         EllipsoidFragment f = EllipsoidPixel(uOrtho, u, row, Du, Xu, EllipsoidF(b, dEllipsoidPrim_Bu),
-                                             EllipsoidF(b, dEllipsoidPrim_c0), uNearPlane, uFarPlane);
+                                             EllipsoidF(b, dEllipsoidPrim_c0), uNearPlane, uFarPlane,
+                                             uCapping, uCapEps);
         if (!f.covered) discard;
-        Float3 xp = EllipsoidParam(u, row, Du, Pu, f.depth);
-        Float3 n = EllipsoidNormal(xp, EllipsoidF3(b, dEllipsoidPrim_mt), EllipsoidF3(b, dEllipsoidPrim_mt + 3u),
-                                   EllipsoidF3(b, dEllipsoidPrim_mt + 6u));
-        Store(f.depth, n, uEllipsoids[b + dEllipsoidPrim_color], uEllipsoids[b + dEllipsoidPrim_id], xp);
+        // A cap's parameter-space point is the ray's point on the plane (inside the ellipsoid).
+        Float3 xp = EllipsoidParam(u, row, Du, Pu, f.capped ? uNearPlane : f.depth);
+        Float3 n = f.capped ? CapNormal()
+                            : EllipsoidNormal(xp, EllipsoidF3(b, dEllipsoidPrim_mt), EllipsoidF3(b, dEllipsoidPrim_mt + 3u),
+                                              EllipsoidF3(b, dEllipsoidPrim_mt + 6u));
+        Store(f.depth, n, uEllipsoids[b + dEllipsoidPrim_color], uEllipsoids[b + dEllipsoidPrim_id], xp, 0.0f,
+              f.capped);
     }
 }

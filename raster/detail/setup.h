@@ -9,6 +9,7 @@
 
 #include "raster/camera.h"
 #include "raster/detail/tile.h"
+#include "raster/frame.h"
 #include "raster/primitives.h"
 
 namespace softmol::raster::detail {
@@ -20,12 +21,20 @@ struct ViewSetup {
          farPlane = 0;
   int width = 0, height = 0;
   bool ortho = false;
+  double contourWidth = 0;  // ξ (Å): sphere and cylinder boxes and zMin grow by it
+  bool capping = false;     // nearPlane is the clip plane of near-plane capping
   glm::dvec3 ToEye(double x, double y, double z) const;  // camera-relative, double
 };
 
 // Near/far are the camera's, or fitted to the scene when either is 0.
 ViewSetup MakeViewSetup(const Camera& camera, const PrimitiveScene& scene);
 FrameConstants MakeFrameConstants(const ViewSetup& view, uint32_t channels);
+// With the edge cueing of `options` (raster/frame.h): the contour width grows the boxes, a
+// near clip replaces the near plane and turns capping on. Options must be valid
+// (ValidateFrameOptions).
+ViewSetup MakeViewSetup(const Camera& camera, const PrimitiveScene& scene,
+                        const FrameOptions& options);
+FrameConstants MakeFrameConstants(const ViewSetup& view, const FrameOptions& options);
 
 // Tight interval of ray parameters u (x-axis) covered by a quadric with eye-space centre c
 // and S = A·Aᵀ (A = semi-axis columns; r²·I for a sphere, r²(I − wwᵀ) for a cylinder's end

@@ -10,6 +10,8 @@ namespace softmol::raster::detail {
 struct SphereSetupConstants {
   double eye[3], right[3], up[3], back[3];
   double invPixelScale, halfWidth, halfHeight, width, height, nearPlane, farPlane, slack;
+  double grow;  // contour width ξ: boxes, culling and zMin use the radius r + ξ (0: off)
+  double zMinFloor;  // zMin >= this: nearPlane, or the front of the cap band with capping
   bool ortho;
 };
 

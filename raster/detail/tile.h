@@ -18,6 +18,13 @@ struct FrameConstants {
   bool ortho = false;
   float viewToWorld[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};  // rows of the eye → world rotation
   uint32_t channels = 0;
+  // Edge cueing (Tarini et al. 2006 §5, raster/shared/attributes.inc). Off by default: the
+  // kernels then run exactly the code and produce exactly the bits they did without it.
+  bool contour = false;      // contour lines (§5.1) on spheres and cylinders
+  float contourWidth = 0;    // ξ, Å
+  float contourEta = 0;      // η of depth-aware lines; 0 = lines at the silhouette depth
+  bool capping = false;      // near-plane capping (§5.3); nearPlane is then the clip plane
+  float capEps = 0;          // kCapEpsilon · nearPlane (CapDepth)
 };
 
 struct PixelBox {
@@ -30,6 +37,7 @@ struct SpherePrim {
   float rr;  // r²
   float c0;  // perspective: |c|² − r² (double); orthographic: unused
   float invR;
+  float r;     // radius (contour lines measure d − r)
   float zMin;  // nearest possible depth, clamped to nearPlane (sort key, coarse test)
   uint32_t color, id;
   PixelBox box;
@@ -43,6 +51,7 @@ struct CylinderPrim {
   float c0;          // perspective: |p⊥|² − r² (double)
   float aOrtho;      // wx² + wy²
   float rr, invR, len, halfLen, invLen;
+  float r;  // radius (contour lines measure d − r)
   float e1x, e1y, e1z, e2x, e2y, e2z;  // eye-space images of the world-space cylinder frame
   float zMin;
   uint32_t color0, color1, id;
@@ -84,6 +93,8 @@ struct TileView {
   uint32_t* baseColor = nullptr;
   uint32_t* primitiveId = nullptr;
   float *surfaceU = nullptr, *surfaceV = nullptr, *surfaceW = nullptr;
+  float* line = nullptr;    // kLine
+  float* capped = nullptr;  // kCapped
   float* rowMax = nullptr;  // scratch, y1 − y0 floats: farthest depth of each tile row
   float tileMax = 0;        // farthest depth in the tile (max of rowMax)
   size_t Index(int x, int y) const { return size_t(y - y0) * size_t(stride) + size_t(x - x0); }

@@ -32,6 +32,8 @@ inline void ClearTile(const FrameConstants& frame, TileView& t) noexcept {
       std::fill(t.surfaceV + b, t.surfaceV + e, 0.0f);
       std::fill(t.surfaceW + b, t.surfaceW + e, 0.0f);
     }
+    if (frame.channels & kLine) std::fill(t.line + b, t.line + e, 0.0f);
+    if (frame.channels & kCapped) std::fill(t.capped + b, t.capped + e, 0.0f);
   }
   std::fill(t.rowMax, t.rowMax + (t.y1 - t.y0), kInf);
   t.tileMax = kInf;

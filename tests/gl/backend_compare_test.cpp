@@ -9,6 +9,7 @@
 // The measured figures are printed (llvmpipe / Mesa 22.3: every buffer equal bit for bit).
 #include <bit>
 #include <cstdio>
+#include <glm/geometric.hpp>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -16,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include "gl/compare.h"
+#include "gl/detail/passes.h"
 #include "gl_test_context.h"
 #include "io/bonds.h"
 #include "io/structure_reader.h"
@@ -81,6 +83,49 @@ std::vector<BufferComparison> CompareGBuffers(const raster::PrimitiveScene& cpuS
   const Planes surface[] = {{&cpu.surfaceU, &gl.surfaceU}, {&cpu.surfaceV, &gl.surfaceV}, {&cpu.surfaceW, &gl.surfaceW}};
   out.push_back(CompareFloatChannel("surface coord", cpu, gl, surface));
   out.push_back(CompareBaseColor(cpu, gl));
+  return out;
+}
+
+// G-buffers of both backends with edge cueing (contour lines, near-plane caps: Tarini et al.
+// §5.1, §5.3), every channel including line and capped. GL runs its tile-kernel pass directly
+// (gl::FrameRenderer takes no FrameOptions), with the same setup, order and uniforms.
+std::vector<BufferComparison> CompareEdgeGBuffers(const raster::PrimitiveScene& scene,
+                                                  const raster::Camera& camera,
+                                                  raster::FrameOptions options) {
+  options.channels = raster::kDepth | raster::kNormal | raster::kBaseColor | raster::kPrimitiveId |
+                     raster::kSurfaceCoord | raster::kLine | raster::kCapped;
+  raster::GBuffer cpu, gl;
+  raster::RenderGBuffer(scene, camera, options, cpu);
+  detail::TileKernelPass pass;
+  detail::GBufferTargets targets;
+  pass.Create();
+  raster::detail::FrameConstants fc;
+  pass.Prepare(scene, camera, options, fc);
+  pass.Upload();
+  targets.Resize(camera.width, camera.height, options.channels);
+  pass.Draw(fc, options.channels, targets);
+  detail::ReadBack(targets, options.channels, gl);
+  targets.Release();
+  pass.Release();
+  std::vector<BufferComparison> out;
+  out.push_back(ComparePrimitiveIds(cpu, gl));
+  const Planes depth[] = {{&cpu.depth, &gl.depth}};
+  out.push_back(CompareFloatChannel("depth", cpu, gl, depth));
+  const Planes normal[] = {{&cpu.normalX, &gl.normalX}, {&cpu.normalY, &gl.normalY}, {&cpu.normalZ, &gl.normalZ}};
+  out.push_back(CompareFloatChannel("normal", cpu, gl, normal));
+  const Planes surface[] = {{&cpu.surfaceU, &gl.surfaceU}, {&cpu.surfaceV, &gl.surfaceV}, {&cpu.surfaceW, &gl.surfaceW}};
+  out.push_back(CompareFloatChannel("surface coord", cpu, gl, surface));
+  out.push_back(CompareBaseColor(cpu, gl));
+  const Planes line[] = {{&cpu.line, &gl.line}};
+  out.push_back(CompareFloatChannel("line", cpu, gl, line));
+  const Planes capped[] = {{&cpu.capped, &gl.capped}};
+  out.push_back(CompareFloatChannel("capped", cpu, gl, capped));
+  size_t lines = 0, caps = 0;
+  for (size_t i = 0; i < cpu.line.size(); ++i) {
+    lines += cpu.line[i] > 0.0f ? 1 : 0;
+    caps += cpu.capped[i] > 0.0f ? 1 : 0;
+  }
+  std::printf("CPU line pixels %zu, capped pixels %zu\n", lines, caps);
   return out;
 }
 
@@ -158,6 +203,61 @@ std::vector<softmol::test::NamedScene> AdversarialAndRandom() {
 
 INSTANTIATE_TEST_SUITE_P(Scenes, Adversarial, testing::ValuesIn(AdversarialAndRandom()),
                          [](const testing::TestParamInfo<softmol::test::NamedScene>& i) { return i.param.name; });
+
+// Edge cueing on the adversarial and random scenes: depth-aware contour lines a few pixels
+// wide and a near clip through the front of the scene. Same bounds as without; the line and
+// capped planes are held to the depth bound (4 ULP) where both see the same primitive.
+class AdversarialEdges : public testing::TestWithParam<softmol::test::NamedScene> {};
+
+TEST_P(AdversarialEdges, GBufferWithContoursAndCappingWithinBounds) {
+  SOFTMOL_NEED_GL();
+  const softmol::test::NamedScene& s = GetParam();
+  const raster::detail::ViewSetup plain = raster::detail::MakeViewSetup(s.camera, s.scene);
+  raster::FrameOptions o;
+  const double depth = plain.ortho ? 1.0 : 0.5 * (plain.nearPlane + plain.farPlane);
+  o.contourWidth = float(3.0 * plain.pixelScale * depth);
+  o.contourDepthAware = true;
+  o.contourDepthScale = 4.0f;
+  o.nearClip = float(plain.nearPlane + 0.3 * (plain.farPlane - plain.nearPlane));
+  const std::vector<BufferComparison> b = CompareEdgeGBuffers(s.scene, s.camera, o);
+  Print(s.name + " (contours + capping)", b);
+  ExpectWithinBounds(s.name, b);
+  for (const BufferComparison& c : b)
+    if (c.name == "line" || c.name == "capped") {
+      EXPECT_LE(c.maxDifference, kDepthMaxUlp) << s.name << " " << c.name;
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, AdversarialEdges, testing::ValuesIn(AdversarialAndRandom()),
+                         [](const testing::TestParamInfo<softmol::test::NamedScene>& i) { return i.param.name; });
+
+// The same on a real molecule in ball-and-stick (spheres and cylinders), plain and
+// depth-aware lines, capped through its middle.
+TEST(Edges, RealMoleculeBallsContoursAndCapping) {
+  SOFTMOL_NEED_GL();
+  io::Molecule mol = io::ReadMolecule(std::string(SOFTMOL_DATA_DIR) + "/pept.pdb");
+  io::ComputeDistanceBonds(mol);
+  raster::RepresentationOptions rep;
+  rep.style = raster::Style::kBalls;
+  const raster::PrimitiveScene scene = raster::BuildRepresentation(mol, rep);
+  const raster::Camera camera = raster::DefaultCamera(scene, 320, 240);
+  const double dist = glm::length(scene.Bounds().center - camera.eye);
+  for (bool aware : {false, true}) {
+    raster::FrameOptions o;
+    o.contourWidth = 0.15f;
+    o.contourDepthAware = aware;
+    o.nearClip = float(dist);
+    const std::vector<BufferComparison> b = CompareEdgeGBuffers(scene, camera, o);
+    const std::string name = std::string("pept balls contours") + (aware ? " depth-aware" : "") + " + capping";
+    Print(name, b);
+    ASSERT_GT(b[0].compared, 1000u);
+    ExpectWithinBounds(name, b);
+    for (const BufferComparison& c : b)
+      if (c.name == "line" || c.name == "capped") {
+        EXPECT_LE(c.maxDifference, kDepthMaxUlp) << name << " " << c.name;
+      }
+  }
+}
 
 // Negative control: the harness must see a small change. One sphere's radius grows by
 // 2^-16 (relative) in the GL scene only: its silhouette and depths must then differ.

@@ -6,7 +6,10 @@
 #include <tbb/global_control.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <cstring>
+#include <glm/geometric.hpp>
+#include <string>
 #include <vector>
 
 #include "raster/frame.h"
@@ -25,15 +28,34 @@ std::vector<uint8_t> Bytes(const GBuffer& g) {
   };
   add(g.depth), add(g.normalX), add(g.normalY), add(g.normalZ), add(g.baseColor);
   add(g.primitiveId), add(g.surfaceU), add(g.surfaceV), add(g.surfaceW);
+  add(g.line), add(g.capped);
   return b;
 }
+
+// Edge cueing (Tarini et al. §5.1, §5.3) on or off: depth-aware contour lines a few pixels
+// wide and a near clip plane through the front of the scene.
+FrameOptions Options(const test::NamedScene& s, bool edges) {
+  FrameOptions opt;
+  opt.channels = kDepth | kNormal | kBaseColor | kPrimitiveId | kSurfaceCoord;
+  if (!edges) return opt;
+  opt.channels |= kLine | kCapped;
+  const double near = s.camera.nearPlane > 0 ? s.camera.nearPlane : 0.0;
+  const BoundingSphere b = s.scene.Bounds();
+  const double dist = glm::length(b.center - s.camera.eye);
+  const double depth = s.camera.orthographic ? 1.0 : dist;
+  opt.contourWidth = float(3.0 * PixelScale(s.camera) * depth);
+  opt.contourDepthAware = true;
+  opt.nearClip = float(std::max(near, dist - 0.5 * b.radius));
+  return opt;
+}
+
+bool gEdges = false;  // set per test: every Render of the test uses it
 
 std::vector<uint8_t> Render(const test::NamedScene& s, int threads, int tileSize,
                             FrameWorkspace* ws = nullptr) {
   GBuffer g;
-  FrameOptions opt;
+  FrameOptions opt = Options(s, gEdges);
   opt.tileSize = tileSize;
-  opt.channels = kDepth | kNormal | kBaseColor | kPrimitiveId | kSurfaceCoord;
   tbb::task_arena arena(threads);
   arena.execute([&] { RenderGBuffer(s.scene, s.camera, opt, g, ws); });
   return Bytes(g);
@@ -47,7 +69,17 @@ std::vector<test::NamedScene> Scenes() {
   return s;
 }
 
-TEST(RasterDeterminism, ThreadsRunsAndTileSizes) {
+class RasterDeterminismEdges : public testing::TestWithParam<bool> {
+ protected:
+  void SetUp() override { gEdges = GetParam(); }
+  void TearDown() override { gEdges = false; }
+};
+INSTANTIATE_TEST_SUITE_P(Edges, RasterDeterminismEdges, testing::Bool(),
+                         [](const testing::TestParamInfo<bool>& i) {
+                           return std::string(i.param ? "ContoursAndCapping" : "Plain");
+                         });
+
+TEST_P(RasterDeterminismEdges, ThreadsRunsAndTileSizes) {
   for (const auto& s : Scenes()) {
     SCOPED_TRACE(s.name);
     const std::vector<uint8_t> ref = Render(s, 1, 32);
@@ -61,7 +93,7 @@ TEST(RasterDeterminism, ThreadsRunsAndTileSizes) {
   }
 }
 
-TEST(RasterDeterminism, EverySimdTargetGivesTheSameBytes) {
+TEST_P(RasterDeterminismEdges, EverySimdTargetGivesTheSameBytes) {
   const std::vector<test::NamedScene> scenes = Scenes();
   std::vector<std::vector<uint8_t>> ref;
   for (const auto& s : scenes) ref.push_back(Render(s, 2, 32));

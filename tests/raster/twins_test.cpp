@@ -2,6 +2,8 @@
 // scalar twin built from raster/shared/*.inc bit for bit, on every SIMD target compiled in and
 // supported by this CPU, for every G-buffer channel, on random and adversarial scenes.
 // The tile is 100 px wide (no multiple of any vector width) so the one-lane row tail runs.
+// Each scene runs without edge cueing, with contour lines (plain and depth-aware), with
+// near-plane capping, and with both (Tarini et al. 2006 §5.1, §5.3).
 #include <gtest/gtest.h>
 #include <hwy/tests/hwy_gtest.h>
 
@@ -18,16 +20,18 @@ namespace softmol::raster {
 namespace {
 
 struct Planes {
-  std::vector<float> depth, nx, ny, nz, su, sv, sw, rowMax;
+  std::vector<float> depth, nx, ny, nz, su, sv, sw, line, capped, rowMax;
   std::vector<uint32_t> color, id;
   Planes(size_t n, size_t rows)
-      : depth(n), nx(n), ny(n), nz(n), su(n), sv(n), sw(n), rowMax(rows), color(n), id(n) {}
+      : depth(n), nx(n), ny(n), nz(n), su(n), sv(n), sw(n), line(n), capped(n), rowMax(rows),
+        color(n), id(n) {}
   detail::TileView View(int w, int h) {
     detail::TileView t;
     t.x0 = 0, t.y0 = 0, t.x1 = w, t.y1 = h, t.stride = w;
     t.depth = depth.data(), t.normalX = nx.data(), t.normalY = ny.data(), t.normalZ = nz.data();
     t.baseColor = color.data(), t.primitiveId = id.data();
     t.surfaceU = su.data(), t.surfaceV = sv.data(), t.surfaceW = sw.data();
+    t.line = line.data(), t.capped = capped.data();
     t.rowMax = rowMax.data();
     return t;
   }
@@ -46,18 +50,39 @@ void ExpectSameBits(const std::vector<T>& a, const std::vector<T>& b, const char
 class RasterTileKernelTwins : public hwy::TestWithParamTarget {};
 HWY_TARGET_INSTANTIATE_TEST_SUITE_P(RasterTileKernelTwins);
 
-TEST_P(RasterTileKernelTwins, SimdMatchesScalarBitForBit) {
+enum Edges { kNoEdges, kContours, kDepthAwareContours, kCapping, kBoth, kEdgeModes };
+const char* const kEdgeNames[] = {"none", "contours", "depth-aware contours", "capping", "both"};
+
+// Counts of the fragments each edge mode produced over all scenes (so the test proves the
+// modes actually drew lines and caps).
+struct EdgeCounts {
+  size_t kept = 0, lines = 0, caps = 0;
+};
+
+void RunScenes(Edges mode, EdgeCounts& counts) {
   std::vector<test::NamedScene> scenes = test::AdversarialScenes();
   scenes.push_back(test::RandomBallsAndSticks(99, 300, 100, 70, false));
   scenes.push_back(test::RandomBallsAndSticks(98, 300, 100, 70, true));
-  size_t kept = 0;
   for (test::NamedScene& s : scenes) {
-    SCOPED_TRACE(s.name);
+    SCOPED_TRACE(s.name + " edges: " + kEdgeNames[mode]);
     s.camera.width = 100;
     s.camera.height = 70;
-    const detail::ViewSetup view = detail::MakeViewSetup(s.camera, s.scene);
-    const detail::FrameConstants fc = detail::MakeFrameConstants(
-        view, kDepth | kNormal | kBaseColor | kPrimitiveId | kSurfaceCoord);
+    FrameOptions options;
+    options.channels = kDepth | kNormal | kBaseColor | kPrimitiveId | kSurfaceCoord | kLine | kCapped;
+    if (mode == kContours || mode == kDepthAwareContours || mode == kBoth) {
+      // A width of a few pixels at the scene's scale (the scenes span 10⁻³..10⁵ Å).
+      const detail::ViewSetup plain = detail::MakeViewSetup(s.camera, s.scene);
+      const double depth = plain.ortho ? 1.0 : 0.5 * (plain.nearPlane + plain.farPlane);
+      options.contourWidth = float(3.0 * plain.pixelScale * depth);
+      options.contourDepthAware = mode != kContours;
+      options.contourDepthScale = 4.0f;
+    }
+    if (mode == kCapping || mode == kBoth) {  // a plane through the scene's front part
+      const detail::ViewSetup plain = detail::MakeViewSetup(s.camera, s.scene);
+      options.nearClip = float(plain.nearPlane + 0.3 * (plain.farPlane - plain.nearPlane));
+    }
+    const detail::ViewSetup view = detail::MakeViewSetup(s.camera, s.scene, options);
+    const detail::FrameConstants fc = detail::MakeFrameConstants(view, options);
     detail::SetupOutput setup;
     detail::SetupPrimitives(s.scene, view, setup);
     // Front to back by nearest depth, ties by id: what the frame driver does.
@@ -88,7 +113,11 @@ TEST_P(RasterTileKernelTwins, SimdMatchesScalarBitForBit) {
     detail::RasterizeTile(fc, prims, entries, ts, ks);
     detail::RasterizeTileScalar(fc, prims, entries, tr, kr);
     EXPECT_EQ(ks.fragmentsKept, kr.fragmentsKept);
-    kept += kr.fragmentsKept;
+    counts.kept += kr.fragmentsKept;
+    for (size_t i = 0; i < scalar.line.size(); ++i) {
+      counts.lines += scalar.line[i] > 0.0f ? 1 : 0;
+      counts.caps += scalar.capped[i] > 0.0f ? 1 : 0;
+    }
     ExpectSameBits(simd.depth, scalar.depth, "depth", w);
     ExpectSameBits(simd.nx, scalar.nx, "normalX", w);
     ExpectSameBits(simd.ny, scalar.ny, "normalY", w);
@@ -98,8 +127,27 @@ TEST_P(RasterTileKernelTwins, SimdMatchesScalarBitForBit) {
     ExpectSameBits(simd.sw, scalar.sw, "surfaceW", w);
     ExpectSameBits(simd.color, scalar.color, "baseColor", w);
     ExpectSameBits(simd.id, scalar.id, "primitiveId", w);
+    ExpectSameBits(simd.line, scalar.line, "line", w);
+    ExpectSameBits(simd.capped, scalar.capped, "capped", w);
   }
-  EXPECT_GT(kept, 10000u) << "the scenes must actually draw something";
+}
+
+TEST_P(RasterTileKernelTwins, SimdMatchesScalarBitForBit) {
+  for (int mode = 0; mode < kEdgeModes; ++mode) {
+    EdgeCounts counts;
+    RunScenes(Edges(mode), counts);
+    // Capping discards what lies in front of the plane: fewer fragments, still thousands.
+    EXPECT_GT(counts.kept, mode == kNoEdges ? 10000u : 5000u)
+        << kEdgeNames[mode] << ": the scenes must actually draw something";
+    if (mode == kContours || mode == kDepthAwareContours || mode == kBoth)
+      EXPECT_GT(counts.lines, 500u) << kEdgeNames[mode] << ": no contour lines drawn";
+    else
+      EXPECT_EQ(counts.lines, 0u) << kEdgeNames[mode];
+    if (mode == kCapping || mode == kBoth)
+      EXPECT_GT(counts.caps, 500u) << kEdgeNames[mode] << ": no caps drawn";
+    else
+      EXPECT_EQ(counts.caps, 0u) << kEdgeNames[mode];
+  }
 }
 
 }  // namespace
