@@ -1,6 +1,9 @@
 #include "effects/shading.h"
 
+#include <algorithm>
 #include <cmath>
+
+#include <glm/geometric.hpp>
 
 #include <tbb/parallel_for.h>
 
@@ -8,6 +11,7 @@
 #include "effects/color.h"
 #include "effects/shading_kernel.h"
 #include "effects/shared/prelude.h"
+#include "io/error.h"
 
 namespace softmol::effects {
 namespace {
@@ -36,16 +40,64 @@ glm::vec3 ShadePixel(glm::vec3 normal, glm::vec3 baseColorLinear, float ambientO
                    baseColorLinear.z * t.k + t.s);
 }
 
+void SceneDepthRange(const raster::BoundingSphere& bounds, const raster::Camera& camera,
+                     float& nearDepth, float& farDepth) {
+  const glm::dvec3 axis = camera.target - camera.eye;
+  const double len = std::sqrt(glm::dot(axis, axis));
+  const double centre = len > 0.0 ? glm::dot(bounds.center - camera.eye, axis) / len : 0.0;
+  nearDepth = float(std::max(centre - bounds.radius, 0.0));
+  farDepth = float(std::max(centre + bounds.radius, double(nearDepth) + 1.0e-3));
+}
+
+void ValidateShadeInputs(const ShadeInputs& in) {
+  auto require = [](bool ok, const char* option, const char* message) {
+    if (!ok) throw io::InputError({option}, message);
+  };
+  auto unitColor = [](glm::vec3 c) {
+    return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z) && c.x >= 0.0f &&
+           c.y >= 0.0f && c.z >= 0.0f && c.x <= 1.0f && c.y <= 1.0f && c.z <= 1.0f;
+  };
+  require(unitColor(in.lineColor), "contours.color", "components must be in 0..1");
+  require(unitColor(in.outlineColor), "outlines.color", "components must be in 0..1");
+  require(unitColor(in.haloColor), "halos.color", "components must be in 0..1");
+  require(unitColor(in.fogColor), "depth-cue.color", "components must be in 0..1");
+  require(std::isfinite(in.cueStrength) && in.cueStrength >= 0.0f && in.cueStrength <= 1.0f,
+          "depth-cue.strength", "must be in 0..1");
+  // A range below 1e-3 Å would make its inverse overflow toward inf (and inf·0 = NaN).
+  require(in.cueStrength == 0.0f || (std::isfinite(in.cueNear) && std::isfinite(in.cueFar) &&
+                                     in.cueFar - in.cueNear >= 1.0e-3f),
+          "depth-cue.far", "must be finite and at least 0.001 Å beyond depth-cue.near");
+  require(std::isfinite(in.clipNear) && std::isfinite(in.clipLighten) &&
+              (in.clipLighten == 0.0f || in.clipLighten >= 1.0e-3f),
+          "near-clip.lighten", "must be 0 (off) or at least 0.001 Å");
+}
+
 void ShadeAndResolve(const raster::GBuffer& g, int ssaa, const ShadingOptions& options,
                      const Backdrop& backdrop, std::span<const float> ambientOcclusion,
                      std::span<float> rgba) {
+  ShadeInputs inputs;
+  inputs.ambientOcclusion = ambientOcclusion;
+  ShadeAndResolve(g, ssaa, options, backdrop, inputs, rgba);
+}
+
+void ShadeAndResolve(const raster::GBuffer& g, int ssaa, const ShadingOptions& options,
+                     const Backdrop& backdrop, const ShadeInputs& inputs, std::span<float> rgba) {
+  ValidateShadeInputs(inputs);
   const size_t samples = size_t(g.width) * size_t(g.height);
   SOFTMOL_CHECK(ssaa >= 1 && g.width % ssaa == 0 && g.height % ssaa == 0);
   const int width = g.width / ssaa, height = g.height / ssaa;
   SOFTMOL_CHECK(rgba.size() == 4 * size_t(width) * size_t(height));
-  SOFTMOL_CHECK(ambientOcclusion.empty() || ambientOcclusion.size() == samples);
+  const std::span<const float> ambientOcclusion = inputs.ambientOcclusion;
+  for (std::span<const float> s : {inputs.ambientOcclusion, inputs.shadow, inputs.outline, inputs.halo})
+    SOFTMOL_CHECK(s.empty() || s.size() == samples);
   SOFTMOL_CHECK(g.normalX.size() == samples && g.baseColor.size() == samples &&
                 g.primitiveId.size() == samples);
+  const bool cue = inputs.cueStrength > 0.0f;
+  const bool clipLighten = inputs.clipLighten > 0.0f;
+  SOFTMOL_CHECK(!(cue || clipLighten) || g.depth.size() == samples);
+  // The G-buffer's own line and cap planes, when the raster pass wrote them.
+  const bool haveLine = (g.channels & raster::kLine) != 0 && g.line.size() == samples;
+  const bool haveCapped = (g.channels & raster::kCapped) != 0 && g.capped.size() == samples;
   glm::vec3 light, half;
   LightVectors(options, light, half);
   ShadeConstants c;
@@ -58,6 +110,16 @@ void ShadeAndResolve(const raster::GBuffer& g, int ssaa, const ShadingOptions& o
   c.backdropB = backdrop.transparent ? 0.0f : backdrop.color.z;
   c.backdropA = backdrop.transparent ? 0.0f : 1.0f;
   c.srgbDecode = SrgbDecodeTable();
+  c.lineR = inputs.lineColor.x, c.lineG = inputs.lineColor.y, c.lineB = inputs.lineColor.z;
+  c.outlineR = inputs.outlineColor.x, c.outlineG = inputs.outlineColor.y, c.outlineB = inputs.outlineColor.z;
+  c.haloR = inputs.haloColor.x, c.haloG = inputs.haloColor.y, c.haloB = inputs.haloColor.z;
+  c.fogR = inputs.fogColor.x, c.fogG = inputs.fogColor.y, c.fogB = inputs.fogColor.z;
+  c.cueNear = inputs.cueNear;
+  c.cueInvRange = cue ? 1.0f / (inputs.cueFar - inputs.cueNear) : 0.0f;
+  c.cueStrength = inputs.cueStrength;
+  c.clipNear = inputs.clipNear;
+  c.clipInvLighten = clipLighten ? 1.0f / inputs.clipLighten : 0.0f;
+  auto at = [](std::span<const float> s, size_t first) { return s.empty() ? nullptr : &s[first]; };
   const float inv = 1.0f / float(ssaa * ssaa);
   const size_t rowSamples = size_t(g.width);
 
@@ -68,9 +130,18 @@ void ShadeAndResolve(const raster::GBuffer& g, int ssaa, const ShadingOptions& o
       const int y = height - 1 - row;  // G-buffer rows are bottom-up, files top-down
       for (int sy = 0; sy < ssaa; ++sy) {
         const size_t first = size_t(y * ssaa + sy) * rowSamples;
-        const SampleRow in{&g.normalX[first], &g.normalY[first], &g.normalZ[first],
-                           &g.baseColor[first], &g.primitiveId[first],
-                           ambientOcclusion.empty() ? nullptr : &ambientOcclusion[first]};
+        const SampleRow in{&g.normalX[first],
+                           &g.normalY[first],
+                           &g.normalZ[first],
+                           &g.baseColor[first],
+                           &g.primitiveId[first],
+                           at(ambientOcclusion, first),
+                           at(inputs.shadow, first),
+                           haveLine ? &g.line[first] : nullptr,
+                           haveCapped ? &g.capped[first] : nullptr,
+                           at(inputs.outline, first),
+                           at(inputs.halo, first),
+                           (cue || clipLighten) ? &g.depth[first] : nullptr};
         float* plane = &shaded[4 * size_t(sy) * rowSamples];
         ShadeSampleRow(c, in, rowSamples,
                        ShadedRow{plane, plane + rowSamples, plane + 2 * rowSamples, plane + 3 * rowSamples});

@@ -8,7 +8,9 @@
 
 #include <glm/vec3.hpp>
 
+#include "raster/camera.h"
 #include "raster/gbuffer.h"
+#include "raster/primitives.h"
 
 namespace softmol::effects {
 
@@ -26,6 +28,45 @@ struct Backdrop {
   bool transparent = false;           // alpha 0 instead of `color`
 };
 
+// Everything besides the G-buffer that the shading pass composites, every part optional: an
+// empty span (or a strength of 0) skips its step, and with nothing given the output is the
+// plain lighting, bit for bit. Spans hold one value per G-buffer sample (index y·width + x).
+// Per sample, in this order:
+//   1. colour = base·(ambient·AO + diffuse·shadow·max(n·l,0)) + specular·shadow·(n·h)^k
+//      (Sigg §4 deferred shading + soft shadows). On a near-plane cap (G-buffer channel kCapped)
+//      AO = 1, and AO is lightened toward 1 within clipLighten Å behind clipNear (Tarini §5.3);
+//   2. the contour-line weight (G-buffer channel kLine) mixes in lineColor (Tarini §5.1);
+//   — background samples are the backdrop from here on —
+//   3. the outline strength mixes in outlineColor, background included (Sigg §4 silhouettes);
+//   4. the halo opacity mixes in haloColor, background included (Tarini §5.2);
+//   5. surfaces only: the depth cue mixes toward fogColor, linear in eye depth from cueNear
+//      (nothing) to cueFar (cueStrength).
+// A "mix" of weight w is c·(1 − w) + colour·w on premultiplied colour; alpha becomes
+// a + (1 − a)·w for the layers that cover the background (3, 4). Lines and caps are read from
+// the G-buffer when it has those channels.
+struct ShadeInputs {
+  std::span<const float> ambientOcclusion;  // 1 = open
+  std::span<const float> shadow;            // light visibility in [0,1] (ShadowFactors)
+  std::span<const float> outline;           // line strength in [0,1] (SobelOutlines)
+  std::span<const float> halo;              // halo opacity in [0,1]
+  glm::vec3 lineColor{0.0f, 0.0f, 0.0f};    // linear RGB
+  glm::vec3 outlineColor{0.0f, 0.0f, 0.0f};
+  glm::vec3 haloColor{0.0f, 0.0f, 0.0f};
+  glm::vec3 fogColor{1.0f, 1.0f, 1.0f};     // usually the background colour
+  float cueNear = 0.0f, cueFar = 0.0f;      // eye depth, Å (e.g. the molecule's depth range)
+  float cueStrength = 0.0f;                 // 0..1; 0 = no depth cue
+  float clipNear = 0.0f;                    // Å: the near clipping plane
+  float clipLighten = 0.0f;                 // Å behind it where AO is lightened; 0 = off
+};
+
+// The eye-depth range of a bounding sphere seen by `camera` (along its view axis, Å, near
+// clamped at 0): the default cueNear/cueFar, so the cue spans exactly the molecule.
+void SceneDepthRange(const raster::BoundingSphere& bounds, const raster::Camera& camera,
+                     float& nearDepth, float& farDepth);
+
+// Throws io::InputError naming the option ("depth-cue.strength", ...) for a bad value.
+void ValidateShadeInputs(const ShadeInputs& inputs);
+
 // The deferred shading pass fused with the supersample resolve: shades every G-buffer sample
 // (needs the normal, base-colour and id channels) and averages each ssaa×ssaa block into one
 // premultiplied linear RGBA pixel of `rgba` (4 floats a pixel, g.width/ssaa × g.height/ssaa,
@@ -35,6 +76,10 @@ struct Backdrop {
 void ShadeAndResolve(const raster::GBuffer& g, int ssaa, const ShadingOptions& options,
                      const Backdrop& backdrop, std::span<const float> ambientOcclusion,
                      std::span<float> rgba);
+// The same with every compositing input (order above). Needs the depth channel too when the
+// depth cue or the near-plane lightening is on.
+void ShadeAndResolve(const raster::GBuffer& g, int ssaa, const ShadingOptions& options,
+                     const Backdrop& backdrop, const ShadeInputs& inputs, std::span<float> rgba);
 
 // One pixel, the formula ShadeDeferred applies (the reference for tests and the GL mirror).
 glm::vec3 ShadePixel(glm::vec3 normal, glm::vec3 baseColorLinear, float ambientOcclusion,

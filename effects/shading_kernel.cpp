@@ -1,5 +1,6 @@
 // effects/shading_kernel.cpp — compiles effects/shading_kernel-inl.h once per SIMD target,
-// dispatches once per row; and the scalar twin built from effects/shared/blinn_phong.inc.
+// dispatches once per row; and the scalar twin built from effects/shared/blinn_phong.inc and
+// effects/shared/compositing.inc.
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "effects/shading_kernel.cpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
@@ -18,27 +19,73 @@ void ShadeSampleRow(const ShadeConstants& c, const SampleRow& in, size_t count,
   HWY_DYNAMIC_DISPATCH(ShadeSampleRowImpl)(c, in, count, out);
 }
 
+// The order of the steps is the one effects/shading.h documents; the SIMD rows
+// (effects/shading_kernel-inl.h) take the same steps with the same operations.
 void ShadeSampleRowScalar(const ShadeConstants& c, const SampleRow& in, size_t count,
                           const ShadedRow& out) noexcept {
-  const shared::Float3 light{c.lightX, c.lightY, c.lightZ};
-  const shared::Float3 half{c.halfX, c.halfY, c.halfZ};
+  using namespace shared;
+  const Float3 light{c.lightX, c.lightY, c.lightZ};
+  const Float3 half{c.halfX, c.halfY, c.halfZ};
+  const bool cue = in.depth != nullptr && c.cueStrength > 0.0f;
+  const bool clipLighten = in.depth != nullptr && c.clipInvLighten > 0.0f;
   for (size_t i = 0; i < count; ++i) {
-    if (in.primitiveId[i] == 0xFFFFFFFFu) {
-      out.r[i] = c.backdropR;
-      out.g[i] = c.backdropG;
-      out.b[i] = c.backdropB;
-      out.a[i] = c.backdropA;
-      continue;
+    const bool background = in.primitiveId[i] == 0xFFFFFFFFu;
+    float r, g, b, a;
+    if (background) {
+      r = c.backdropR;
+      g = c.backdropG;
+      b = c.backdropB;
+      a = c.backdropA;
+    } else {
+      // 1. Lighting: base·(ambient·AO + diffuse·shadow·n·l) + specular·shadow·(n·h)^k, with the
+      //    AO of a near-plane cap fully open and lightened near the plane (Tarini §5.3).
+      const Float3 n{in.normalX[i], in.normalY[i], in.normalZ[i]};
+      float ao = in.ambientOcclusion ? in.ambientOcclusion[i] : 1.0f;
+      if (in.capped) ao = in.capped[i] > 0.5f ? 1.0f : ao;
+      if (clipLighten) ao = NearPlaneLighten(ao, in.depth[i], c.clipNear, c.clipInvLighten);
+      const float shadow = in.shadow ? in.shadow[i] : 1.0f;
+      const LightingTerms t = ShadowedBlinnPhongTerms(n, light, half, ao, shadow, c.ambient,
+                                                      c.diffuse, c.specular, c.shininess);
+      const uint32_t rgb = in.baseColor[i];
+      r = c.srgbDecode[(rgb >> 16) & 0xFF] * t.k + t.s;
+      g = c.srgbDecode[(rgb >> 8) & 0xFF] * t.k + t.s;
+      b = c.srgbDecode[rgb & 0xFF] * t.k + t.s;
+      a = 1.0f;
+      // 2. Contour lines (Tarini §5.1): the line weight mixes in the line colour.
+      if (in.line) {
+        const float w = in.line[i];
+        r = MixToward(r, c.lineR, w);
+        g = MixToward(g, c.lineG, w);
+        b = MixToward(b, c.lineB, w);
+      }
     }
-    const shared::Float3 n{in.normalX[i], in.normalY[i], in.normalZ[i]};
-    const float ao = in.ambientOcclusion ? in.ambientOcclusion[i] : 1.0f;
-    const shared::LightingTerms t =
-        shared::BlinnPhongTerms(n, light, half, ao, c.ambient, c.diffuse, c.specular, c.shininess);
-    const uint32_t rgb = in.baseColor[i];
-    out.r[i] = c.srgbDecode[(rgb >> 16) & 0xFF] * t.k + t.s;
-    out.g[i] = c.srgbDecode[(rgb >> 8) & 0xFF] * t.k + t.s;
-    out.b[i] = c.srgbDecode[rgb & 0xFF] * t.k + t.s;
-    out.a[i] = 1.0f;
+    // 3. Sobel outlines (Sigg §4), background included (silhouettes).
+    if (in.outline) {
+      const float w = in.outline[i];
+      r = MixToward(r, c.outlineR, w);
+      g = MixToward(g, c.outlineG, w);
+      b = MixToward(b, c.outlineB, w);
+      a = CoverAlpha(a, w);
+    }
+    // 4. Halos (Tarini §5.2), background included.
+    if (in.halo) {
+      const float w = in.halo[i];
+      r = MixToward(r, c.haloR, w);
+      g = MixToward(g, c.haloG, w);
+      b = MixToward(b, c.haloB, w);
+      a = CoverAlpha(a, w);
+    }
+    // 5. Depth cue toward the fog colour, surfaces only (the background is the fog's far end).
+    if (cue && !background) {
+      const float w = DepthCueWeight(in.depth[i], c.cueNear, c.cueInvRange, c.cueStrength);
+      r = MixToward(r, c.fogR, w);
+      g = MixToward(g, c.fogG, w);
+      b = MixToward(b, c.fogB, w);
+    }
+    out.r[i] = r;
+    out.g[i] = g;
+    out.b[i] = b;
+    out.a[i] = a;
   }
 }
 

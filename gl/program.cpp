@@ -44,7 +44,9 @@ const std::vector<std::string>& SharedFormulaFiles() {
       "raster/shared/quadratic.inc",     "raster/shared/attributes.inc",
       "raster/shared/sphere_hit.inc",    "raster/shared/cylinder_hit.inc",
       "raster/shared/ellipsoid_hit.inc", "effects/shared/blinn_phong.inc",
+      "effects/shared/compositing.inc",
       // No GL pass calls these yet; they are here so the offline GLSL check compiles them.
+      "effects/shared/shadow_pcf.inc",   "effects/shared/sobel.inc",
       "ao/shared/surface_maps.inc",      "ao/shared/cone_step.inc"};
   return files;
 }

@@ -7,5 +7,13 @@
 namespace softmol::effects::shared {
 using raster::shared::Dot3;
 using raster::shared::Float3;
+using std::sqrt;
+// Order matters (sobel.inc uses Ramp01 from compositing.inc); clang-format must not sort these.
+// clang-format off
 #include "effects/shared/blinn_phong.inc"
+#include "effects/shared/compositing.inc"
+#include "effects/shared/shadow_pcf.inc"
+#include "effects/shared/sobel.inc"
+#include "effects/shared/depth_halo.inc"
+// clang-format on
 }  // namespace softmol::effects::shared

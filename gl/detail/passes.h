@@ -14,7 +14,8 @@
 namespace softmol::gl::detail {
 
 // G-buffer attachments, in fragment output order (gl/shaders/tile_kernel.frag).
-enum Attachment { kAttDepth = 0, kAttNormal, kAttBaseColor, kAttPrimitiveId, kAttSurface, kAttCount };
+// kAttEdges: RG32F, (line, capped) of contour lines and near-plane caps (raster::kLine, kCapped).
+enum Attachment { kAttDepth = 0, kAttNormal, kAttBaseColor, kAttPrimitiveId, kAttSurface, kAttEdges, kAttCount };
 
 struct GBufferTargets {
   int width = 0, height = 0;
@@ -38,6 +39,10 @@ struct TileKernelPass {
   // Setup (CPU, raster/setup.cpp) and the front-to-back order; returns the visible count.
   size_t Prepare(const raster::PrimitiveScene& scene, const raster::Camera& camera,
                  uint32_t channels, raster::detail::FrameConstants& fc);
+  // The same with the edge cueing of `options` (contour lines, near-plane capping) and
+  // options.channels; throws io::InputError for bad options (raster::ValidateFrameOptions).
+  size_t Prepare(const raster::PrimitiveScene& scene, const raster::Camera& camera,
+                 const raster::FrameOptions& options, raster::detail::FrameConstants& fc);
   void Upload();
   void Draw(const raster::detail::FrameConstants& fc, uint32_t channels, GBufferTargets& g);
 };
@@ -47,11 +52,14 @@ void ReadBack(const GBufferTargets& g, uint32_t channels, raster::GBuffer& out);
 struct ShadingPass {
   uint32_t program = 0, fbo = 0, target = 0;
   int width = 0, height = 0;
+  uint32_t inputs[4] = {};  // R32F per-sample AO, shadow, outline, halo (uploaded when given)
+  int inputWidth = 0, inputHeight = 0;
   void Create();
   void Release();
-  // Shades `g` into a width/ssaa × height/ssaa RGBA32F target (linear, premultiplied).
+  // Shades `g` into a width/ssaa × height/ssaa RGBA32F target (linear, premultiplied), with
+  // the compositing inputs of effects::ShadeInputs when given (their spans are uploaded).
   void Run(const GBufferTargets& g, int ssaa, const effects::ShadingOptions& options,
-           const effects::Backdrop& backdrop);
+           const effects::Backdrop& backdrop, const effects::ShadeInputs* shadeInputs = nullptr);
   // The target, top row first (RenderedFrame order).
   void ReadBack(std::vector<float>& rgba) const;
 };

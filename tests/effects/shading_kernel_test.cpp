@@ -1,9 +1,13 @@
 // tests/effects/shading_kernel_test.cpp — the SIMD shading kernel (effects/shading_kernel-inl.h)
 // equals its scalar twin built from effects/shared/blinn_phong.inc bit for bit, on every SIMD
 // target compiled in and supported by this CPU: random normals (facing and not facing the
-// light), colours, background samples, with and without AO, and a row length (1003) that is
-// no multiple of any vector width, so the one-lane tail runs too.
+// light), colours, background samples, with and without AO, with every compositing input
+// (shadow, contour line, cap, outline, halo, depth cue, near-plane lightening) alone and all
+// together, and a row length (1003) that is no multiple of any vector width, so the one-lane
+// tail runs too.
+#include <cmath>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -57,6 +61,62 @@ TEST_P(ShadingTwins, SimdMatchesScalarBitForBit) {
       for (size_t i = 0; i < 4 * n; ++i)
         ASSERT_EQ(Bits(simd[i]), Bits(scalar[i]))
             << "channel " << i / n << " sample " << i % n << " shininess " << shininess << " ao " << withAo;
+    }
+  }
+}
+
+// Every compositing input, alone and all together: the SIMD rows equal the scalar twin.
+TEST_P(ShadingTwins, CompositingInputsMatchScalarBitForBit) {
+  const size_t n = 1003;
+  std::mt19937 rng(777);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::vector<float> nx(n), ny(n), nz(n), ao(n), shadow(n), line(n), capped(n), outline(n), halo(n), depth(n);
+  std::vector<uint32_t> color(n), id(n);
+  for (size_t i = 0; i < n; ++i) {
+    float x = 2 * unit(rng) - 1, y = 2 * unit(rng) - 1, z = 2 * unit(rng) - 1;
+    const float len = std::sqrt(x * x + y * y + z * z) + 1e-6f;
+    nx[i] = x / len, ny[i] = y / len, nz[i] = z / len;
+    ao[i] = unit(rng);
+    // Exact 0 and 1 often: they are the values that must not disturb the colour.
+    shadow[i] = rng() % 3 == 0 ? 1.0f : unit(rng);
+    line[i] = rng() % 2 == 0 ? 0.0f : unit(rng);
+    capped[i] = rng() % 5 == 0 ? 1.0f : 0.0f;
+    outline[i] = rng() % 2 == 0 ? 0.0f : unit(rng);
+    halo[i] = rng() % 2 == 0 ? 0.0f : unit(rng);
+    color[i] = uint32_t(rng()) & 0xFFFFFFu;
+    const bool background = rng() % 5 == 0;
+    id[i] = background ? 0xFFFFFFFFu : uint32_t(i);
+    depth[i] = background ? std::numeric_limits<float>::infinity() : 40.0f + 40.0f * unit(rng);
+  }
+  ShadingOptions o;
+  glm::vec3 light, half;
+  LightVectors(o, light, half);
+  ShadeConstants c{light.x, light.y, light.z, half.x, half.y, half.z, o.ambient, o.diffuse, o.specular,
+                   o.shininess, 0.0f, 0.0f, 0.0f, 0.0f, SrgbDecodeTable()};
+  c.lineR = 0.1f, c.lineG = 0.0f, c.lineB = 0.2f;
+  c.outlineR = 0.0f, c.outlineG = 0.3f, c.outlineB = 0.0f;
+  c.haloR = 1.0f, c.haloG = 0.9f, c.haloB = 0.8f;
+  c.fogR = 0.6f, c.fogG = 0.7f, c.fogB = 0.8f;
+  c.cueNear = 50.0f, c.cueInvRange = 1.0f / 20.0f, c.cueStrength = 0.8f;
+  c.clipNear = 40.0f, c.clipInvLighten = 1.0f / 5.0f;
+  for (int which = 0; which <= 8; ++which) {  // 0..6: one input alone; 7: all; 8: all, opaque backdrop
+    SampleRow in{nx.data(), ny.data(), nz.data(), color.data(), id.data(), nullptr};
+    const bool all = which >= 7;
+    if (which == 0 || all) in.ambientOcclusion = ao.data();
+    if (which == 1 || all) in.shadow = shadow.data();
+    if (which == 2 || all) in.line = line.data();
+    if (which == 3 || all) in.capped = capped.data();
+    if (which == 4 || all) in.outline = outline.data();
+    if (which == 5 || all) in.halo = halo.data();
+    if (which == 6 || all) in.depth = depth.data();
+    if (which == 8) c.backdropR = 0.2f, c.backdropG = 0.3f, c.backdropB = 0.4f, c.backdropA = 1.0f;
+    std::vector<float> simd(4 * n, -1.0f), scalar(4 * n, -2.0f);
+    ShadeSampleRow(c, in, n, ShadedRow{&simd[0], &simd[n], &simd[2 * n], &simd[3 * n]});
+    ShadeSampleRowScalar(c, in, n, ShadedRow{&scalar[0], &scalar[n], &scalar[2 * n], &scalar[3 * n]});
+    for (size_t i = 0; i < 4 * n; ++i) {
+      ASSERT_EQ(Bits(simd[i]), Bits(scalar[i]))
+          << "channel " << i / n << " sample " << i % n << " case " << which;
+      ASSERT_TRUE(std::isfinite(scalar[i])) << "channel " << i / n << " sample " << i % n << " case " << which;
     }
   }
 }

@@ -58,10 +58,10 @@ TEST(Shading, ResolveShadesCoveredSamplesAndCompositesTheBackdrop) {
   LightVectors(o, l, h);
   const glm::vec3 lit = ShadePixel({0, 0, 1}, {1, 1, 1}, 1.0f, l, h, o);
   std::vector<float> rgba(4, -1.0f);
-  ShadeAndResolve(g, 2, o, Backdrop{{0.5f, 0.5f, 0.5f}, false}, {}, rgba);
+  ShadeAndResolve(g, 2, o, Backdrop{{0.5f, 0.5f, 0.5f}, false}, std::span<const float>{}, rgba);
   EXPECT_FLOAT_EQ(rgba[0], (lit.x + 0.5f + 0.5f + 0.5f) * 0.25f);
   EXPECT_FLOAT_EQ(rgba[3], 1.0f);
-  ShadeAndResolve(g, 2, o, Backdrop{{0.5f, 0.5f, 0.5f}, true}, {}, rgba);
+  ShadeAndResolve(g, 2, o, Backdrop{{0.5f, 0.5f, 0.5f}, true}, std::span<const float>{}, rgba);
   EXPECT_FLOAT_EQ(rgba[0], lit.x * 0.25f) << "premultiplied, transparent backdrop adds nothing";
   EXPECT_FLOAT_EQ(rgba[3], 0.25f);
   // Occlusion scales the ambient term only.
