@@ -1,5 +1,15 @@
-#include "effects/object_halos.h"
+// effects/object_halos.cpp — object-space and temporal halos (Hermosilla et al. 2015, §6):
+// the halo volume (resample, dilation, temporal decay), the march of each G-buffer sample
+// (SIMD rows from effects/object_halos-inl.h, compiled per target and dispatched once per row,
+// and their scalar twin here) and the composite.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "effects/object_halos.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/highway.h>
 
+#include "effects/object_halos-inl.h"
+
+#if HWY_ONCE
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -8,6 +18,7 @@
 #include <glm/mat4x4.hpp>
 #include <tbb/parallel_for.h>
 
+#include "ao/shared/prelude.h"
 #include "common/check.h"
 
 namespace softmol::effects {
@@ -25,7 +36,7 @@ inline float Fetch(const float* data, int res, int x, int y, int z) {
 
 // Trilinear interpolation written out (no texture unit here): p in voxel units of a grid
 // whose voxel i covers [i, i + 1), so voxel centres sit at i + 0.5.
-inline float Trilinear(const float* data, int res, double px, double py, double pz) {
+inline float ResampleTrilinear(const float* data, int res, double px, double py, double pz) {
   const double qx = px - 0.5, qy = py - 0.5, qz = pz - 0.5;
   const double fx0 = std::floor(qx), fy0 = std::floor(qy), fz0 = std::floor(qz);
   const int x0 = int(fx0), y0 = int(fy0), z0 = int(fz0);
@@ -135,7 +146,7 @@ void UpdateHaloVolume(const ao::OccupancyPyramid& sel, const HighlightOptions& o
       for (int y = 0; y < res; ++y)
         for (int x = 0; x < res; ++x)
           now[(size_t(z) * res + size_t(y)) * res + size_t(x)] =
-              Trilinear(src, srcRes, srcOffset.x + (x + 0.5) * toSrc, srcOffset.y + (y + 0.5) * toSrc,
+              ResampleTrilinear(src, srcRes, srcOffset.x + (x + 0.5) * toSrc, srcOffset.y + (y + 0.5) * toSrc,
                         srcOffset.z + (z + 0.5) * toSrc);
   });
   // The glow: a tent dilation of radius `width` (three separable passes), so the halo reaches
@@ -153,81 +164,258 @@ void UpdateHaloVolume(const ao::OccupancyPyramid& sel, const HighlightOptions& o
     // is larger, leaving a fading wake along the selection's path.
     v = decay ? std::max(tmp[i], std::max(v - dec, 0.0f)) : tmp[i];
   });
+  // The occupied box (rays are clipped to it): per slice, then reduced in slice order (min and
+  // max are exact, so any thread count finds the same box).
+  std::vector<int> sliceBox(size_t(res) * 6);
+  tbb::parallel_for(tbb::blocked_range<int>(0, res, 2), [&](const tbb::blocked_range<int>& zs) {
+    for (int z = zs.begin(); z < zs.end(); ++z) {
+      int* b = sliceBox.data() + size_t(z) * 6;
+      b[0] = b[1] = res, b[2] = b[3] = -1;  // x lo, y lo, x hi, y hi (inclusive)
+      b[4] = 0;                             // any value > 0 in the slice
+      for (int y = 0; y < res; ++y) {
+        const float* row = vol.value.data() + (size_t(z) * size_t(res) + size_t(y)) * size_t(res);
+        for (int x = 0; x < res; ++x)
+          if (row[x] > 0.0f) {
+            b[0] = std::min(b[0], x), b[2] = std::max(b[2], x);
+            b[1] = std::min(b[1], y), b[3] = std::max(b[3], y);
+            b[4] = 1;
+          }
+      }
+    }
+  });
+  for (int r = 0; r < 3; ++r) vol.occupiedLo[r] = res, vol.occupiedHi[r] = 0;
+  for (int z = 0; z < res; ++z) {
+    const int* b = sliceBox.data() + size_t(z) * 6;
+    if (!b[4]) continue;
+    vol.occupiedLo[0] = std::min(vol.occupiedLo[0], b[0]), vol.occupiedHi[0] = std::max(vol.occupiedHi[0], b[2] + 1);
+    vol.occupiedLo[1] = std::min(vol.occupiedLo[1], b[1]), vol.occupiedHi[1] = std::max(vol.occupiedHi[1], b[3] + 1);
+    vol.occupiedLo[2] = std::min(vol.occupiedLo[2], z), vol.occupiedHi[2] = std::max(vol.occupiedHi[2], z + 1);
+  }
+  // Empty-space flags (see HaloVolume): block b covers voxels [4b, 4b + 3] on each axis and
+  // a lookup there reads voxels in [4b − 1, 4b + 4].
+  const int nb = (res + detail::kHaloBlock - 1) / detail::kHaloBlock;
+  vol.blockResolution = nb;
+  vol.blockOccupied.assign(size_t(nb) * size_t(nb) * size_t(nb), 0.0f);
+  tbb::parallel_for(0, nb, [&](int bz) {
+    for (int by = 0; by < nb; ++by)
+      for (int bx = 0; bx < nb; ++bx) {
+        bool any = false;
+        const int b = detail::kHaloBlock;
+        for (int z = std::max(b * bz - 1, 0); z <= std::min(b * bz + b, res - 1) && !any; ++z)
+          for (int y = std::max(b * by - 1, 0); y <= std::min(b * by + b, res - 1) && !any; ++y)
+            for (int x = std::max(b * bx - 1, 0); x <= std::min(b * bx + b, res - 1); ++x)
+              if (vol.value[(size_t(z) * size_t(res) + size_t(y)) * size_t(res) + size_t(x)] > 0.0f) {
+                any = true;
+                break;
+              }
+        vol.blockOccupied[(size_t(bz) * size_t(nb) + size_t(by)) * size_t(nb) + size_t(bx)] = any ? 1.0f : 0.0f;
+      }
+  });
   vol.valid = true;
 }
 
-void TraceHalos(const HaloVolume& vol, const raster::Camera& camera, const raster::GBuffer& g,
-                const HighlightOptions& o, std::span<float> halo) {
+namespace detail {
+
+HWY_EXPORT(HaloRowImpl);
+
+HaloConstants MakeHaloConstants(const HaloVolume& vol, const raster::Camera& camera,
+                                const HighlightOptions& o, int width) {
+  SOFTMOL_CHECK(vol.valid && vol.resolution > 0 && vol.voxel > 0.0);
+  HaloConstants k{};
+  // Eye space → halo-grid voxel units (inverse view in double, then rounded once).
+  const glm::dmat4 inv = glm::inverse(raster::ViewMatrix(camera));
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) k.m[3 * r + c] = float(inv[c][r] / vol.voxel);
+    k.offset[r] = float((inv[3][r] - vol.origin[r]) / vol.voxel);
+    // Trilinear lookups at p read voxels ⌊p − ½⌋ and ⌊p − ½⌋ + 1, so outside the occupied
+    // voxels padded by half a voxel every sample is exactly 0: one voxel of pad is ample.
+    const bool empty = vol.occupiedLo[r] >= vol.occupiedHi[r];
+    k.boxLo[r] = empty ? 0.0f : float(std::max(vol.occupiedLo[r] - 1, 0));
+    k.boxHi[r] = empty ? 0.0f : float(std::min(vol.occupiedHi[r] + 1, vol.resolution));
+  }
+  k.ortho = camera.orthographic;
+  k.pixelScale = float(raster::PixelScale(camera));
+  k.halfWidth = float(0.5 * camera.width);
+  k.halfHeight = float(0.5 * camera.height);
+  k.width = width;
+  k.data = vol.value.data();
+  k.res = vol.resolution;
+  k.resF = float(vol.resolution);
+  SOFTMOL_CHECK(vol.blockOccupied.size() == size_t(vol.blockResolution) * size_t(vol.blockResolution) *
+                                               size_t(vol.blockResolution));
+  k.blocks = vol.blockOccupied.data();
+  k.blockRes = vol.blockResolution;
+  k.blockResF = float(vol.blockResolution);
+  k.toWidth = float(vol.voxel / std::max(double(o.width), 0.1));
+  k.strength = std::clamp(o.strength, 0.0f, 1.0f);
+  k.hidden = std::clamp(o.hidden, 0.0f, 1.0f);
+  return k;
+}
+
+void HaloRow(const HaloConstants& k, int y, const float* depth, float* halo) noexcept {
+  HWY_DYNAMIC_DISPATCH(HaloRowImpl)(k, y, depth, halo);
+}
+
+namespace {
+
+using namespace softmol::ao::shared;
+using raster::shared::PixelToRay;
+
+// The voxel at integer coordinates, 0 outside the grid (twin: fetch in HaloSample, -inl.h).
+inline float HaloFetch(const HaloConstants& k, int x, int y, int z) {
+  const int r = k.res;
+  const bool inside = x >= 0 && x <= r - 1 && y >= 0 && y <= r - 1 && z >= 0 && z <= r - 1;
+  return inside ? k.data[(size_t(z) * size_t(r) + size_t(y)) * size_t(r) + size_t(x)] : 0.0f;
+}
+
+// Trilinear lookup of the halo volume at p (voxel units; voxel i's centre at i + 0.5), with
+// the cone tracer's formulas (ao/shared/cone_step.inc) at scale 1.
+inline float HaloSample(const HaloConstants& k, float px, float py, float pz) {
+  const float cx = CellCoord(px, 1.0f, k.resF), cy = CellCoord(py, 1.0f, k.resF),
+              cz = CellCoord(pz, 1.0f, k.resF);
+  const int ix = CellFloor(cx), iy = CellFloor(cy), iz = CellFloor(cz);
+  const float fx = cx - float(ix), fy = cy - float(iy), fz = cz - float(iz);
+  return Trilinear(HaloFetch(k, ix, iy, iz), HaloFetch(k, ix + 1, iy, iz),
+                   HaloFetch(k, ix, iy + 1, iz), HaloFetch(k, ix + 1, iy + 1, iz),
+                   HaloFetch(k, ix, iy, iz + 1), HaloFetch(k, ix + 1, iy, iz + 1),
+                   HaloFetch(k, ix, iy + 1, iz + 1), HaloFetch(k, ix + 1, iy + 1, iz + 1), fx, fy, fz);
+}
+
+// Whether a lookup at p may read a voxel > 0: the flag of p's block (p clamped into the grid,
+// which keeps the answer conservative: a point just outside reads the border block's voxels).
+// Skipping a lookup that would read only zeros leaves the sum's bits unchanged (it would add
+// exactly +0), so this is empty-space skipping with no effect on the result.
+inline bool BlockOccupied(const HaloConstants& k, float px, float py, float pz) {
+  const float top = k.blockResF - 0.5f, q = 1.0f / float(kHaloBlock);
+  auto cell = [&](float p) {
+    float c = p * q;
+    c = c < 0.0f ? 0.0f : c;
+    c = c > top ? top : c;
+    return int(c);
+  };
+  const int n = k.blockRes;
+  return k.blocks[(size_t(cell(pz)) * size_t(n) + size_t(cell(py))) * size_t(n) + size_t(cell(px))] > 0.0f;
+}
+
+// Intersects the ray's interval [tLo, tHi] with the slab lo ≤ a + b·t ≤ hi of one axis. A ray
+// parallel to the slab (b = 0) keeps its interval when inside it and loses it when outside
+// (written with selects, as the SIMD twin must: no division by 0).
+inline void ClipSlab(float a, float b, float lo, float hi, float& tLo, float& tHi) {
+  const bool flat = b == 0.0f;
+  const float bs = flat ? 1.0f : b;
+  const float t0 = (lo - a) / bs, t1 = (hi - a) / bs;
+  const bool order = t0 < t1;
+  const float nearT = order ? t0 : t1, farT = order ? t1 : t0;
+  const bool outside = a < lo || a > hi;
+  const float nearF = flat ? (outside ? kHaloFar : -kHaloFar) : nearT;
+  const float farF = flat ? (outside ? -kHaloFar : kHaloFar) : farT;
+  tLo = nearF > tLo ? nearF : tLo;
+  tHi = farF < tHi ? farF : tHi;
+}
+
+// The glow the ray a + b·t crosses between eye-space distances t0 ≤ t1, in glow widths
+// (occupancy × length): the midpoint rule with ⌈length⌉ steps of at most one voxel, the
+// Fig. 7 accumulation, from t1 toward the eye.
+inline float MarchSegment(const HaloConstants& k, float ax, float ay, float az, float bx, float by,
+                          float bz, float speed, float t0, float t1) {
+  const float len = (t1 - t0) * speed;  // voxels, < 2·res·√3 (the ray is clipped to the box)
+  float n = float(int(len));            // ⌈len⌉ without libm
+  n = n < len ? n + 1.0f : n;
+  const float nSafe = n > 0.0f ? n : 1.0f;
+  const float dt = (t1 - t0) / nSafe;
+  const float seg = len / nSafe;
+  float sum = 0.0f;
+  for (int s = 0; float(s) < n; ++s) {
+    const float t = t1 - (float(s) + 0.5f) * dt;
+    const float px = ax + bx * t, py = ay + by * t, pz = az + bz * t;
+    if (BlockOccupied(k, px, py, pz)) sum = sum + HaloSample(k, px, py, pz);
+  }
+  return (sum * seg) * k.toWidth;
+}
+
+// The halo of one pixel (before the selection's stencil). Eye ray of the pixel centre as a
+// function of the eye-space distance t along −Z (the G-buffer's depth): perspective
+// e = t·(u, v, −1), orthographic e = (u, v, −t); in grid units g = a + b·t.
+float HaloPixel(const HaloConstants& k, int x, int y, float depth) {
+  const float u = PixelToRay(float(x), k.halfWidth, k.pixelScale);
+  const float v = PixelToRay(float(y), k.halfHeight, k.pixelScale);
+  float a[3], b[3];
+  for (int r = 0; r < 3; ++r) {
+    const float mu = k.m[3 * r + 0] * u, mv = k.m[3 * r + 1] * v;
+    if (k.ortho) {
+      a[r] = (k.offset[r] + mu) + mv;
+      b[r] = -k.m[3 * r + 2];
+    } else {
+      a[r] = k.offset[r];
+      b[r] = (mu + mv) - k.m[3 * r + 2];
+    }
+  }
+  // Fig. 7: the ray runs from the back of the (occupied) box to its front, never behind the eye.
+  float tLo = 0.0f, tHi = kHaloFar;
+  for (int r = 0; r < 3; ++r) ClipSlab(a[r], b[r], k.boxLo[r], k.boxHi[r], tLo, tHi);
+  const bool hit = tHi > tLo;
+  tLo = hit ? tLo : 0.0f;  // a miss marches two empty segments: halo 0
+  tHi = hit ? tHi : 0.0f;
+  // Split at the visible surface (background depth +inf: all of the box is in front).
+  float tS = depth < tLo ? tLo : depth;
+  tS = tS > tHi ? tHi : tS;
+  const float speed = std::sqrt((b[0] * b[0] + b[1] * b[1]) + b[2] * b[2]);  // voxels per unit t
+  const float front = MarchSegment(k, a[0], a[1], a[2], b[0], b[1], b[2], speed, tLo, tS);
+  const float behind = MarchSegment(k, a[0], a[1], a[2], b[0], b[1], b[2], speed, tS, tHi);
+  // Accumulated glow → opacity by a/(1 + a): 0 for nothing crossed, rising smoothly and
+  // saturating below 1 (no exp). §6.1 marches only from the surface toward the eye, so a
+  // selection buried in the protein shows only where its glow leaks past an occluder's
+  // silhouette; the issue asks for it to show over the surface that hides it. So the glow
+  // behind the surface counts too, seen through that surface as through a veil that lets a
+  // share `hidden` of it pass ("over": front glow over the veiled back glow). A hidden
+  // selection then reads as a fainter glow than a visible one (a depth cue), the surface
+  // stays readable under it, and where nothing lies behind the surface (a visible selection
+  // on the background) the halo is exactly Fig. 7's.
+  const float hFront = k.strength * (front / (1.0f + front));
+  const float hBehind = k.strength * (behind / (1.0f + behind));
+  return hFront + (1.0f - hFront) * (k.hidden * hBehind);
+}
+
+}  // namespace
+
+void HaloRowScalar(const HaloConstants& k, int y, const float* depth, float* halo) noexcept {
+  for (int x = 0; x < k.width; ++x) halo[x] = HaloPixel(k, x, y, depth[x]);
+}
+
+}  // namespace detail
+
+namespace {
+
+template <class RowFn>
+void RunHalos(const HaloVolume& vol, const raster::Camera& camera, const raster::GBuffer& g,
+              const HighlightOptions& o, std::span<float> halo, RowFn row) {
   SOFTMOL_CHECK(halo.size() == size_t(g.width) * size_t(g.height));
   SOFTMOL_CHECK(vol.valid && !g.primitiveId.empty() && !g.depth.empty());
-  // Eye space → halo-grid voxel units: g = offset + M·e (double; per-sample work is scalar).
-  const glm::dmat4 inv = glm::inverse(raster::ViewMatrix(camera));
-  double M[3][3], off[3];
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) M[r][c] = inv[c][r] / vol.voxel;
-    off[r] = (inv[3][r] - vol.origin[r]) / vol.voxel;
-  }
-  const double scale = raster::PixelScale(camera);
-  const double halfW = 0.5 * camera.width, halfH = 0.5 * camera.height;
-  const int res = vol.resolution;
-  const float* data = vol.value.data();
-  const float strength = std::clamp(o.strength, 0.0f, 1.0f);
-  const double toWidth = vol.voxel / std::max(double(o.width), 0.1);  // voxels → widths
+  const detail::HaloConstants k = detail::MakeHaloConstants(vol, camera, o, g.width);
   const std::span<const uint8_t> sel(o.spheres);
   tbb::parallel_for(tbb::blocked_range<int>(0, g.height, 4), [&](const tbb::blocked_range<int>& rows) {
-    for (int y = rows.begin(); y < rows.end(); ++y)
+    for (int y = rows.begin(); y < rows.end(); ++y) {
+      const size_t i0 = g.Index(0, y);
+      row(k, y, g.depth.data() + i0, halo.data() + i0);
+      // §6.1's stencil: no halo over the selection's own samples.
       for (int x = 0; x < g.width; ++x) {
-        const size_t i = g.Index(x, y);
-        float& out = halo[i];
-        out = 0.0f;
-        const uint32_t id = g.primitiveId[i];
-        if (id < sel.size() && sel[id]) continue;  // §6.1's stencil: no halo over the selection
-        // The eye ray of the pixel centre, as a function of the eye-space distance t along −Z
-        // (the G-buffer's depth): perspective e = t·(u, v, −1), orthographic e = (u, v, −t).
-        const double u = ((x + 0.5) - halfW) * scale, v = ((y + 0.5) - halfH) * scale;
-        double A[3], B[3];
-        for (int r = 0; r < 3; ++r) {
-          if (camera.orthographic) {
-            A[r] = off[r] + M[r][0] * u + M[r][1] * v;
-            B[r] = -M[r][2];
-          } else {
-            A[r] = off[r];
-            B[r] = M[r][0] * u + M[r][1] * v - M[r][2];
-          }
-        }
-        // Clip to the volume [0, res]³ (slabs).
-        double tLo = 0.0, tHi = std::numeric_limits<double>::infinity();
-        for (int r = 0; r < 3; ++r) {
-          if (B[r] == 0.0) {
-            if (A[r] < 0.0 || A[r] > res) tHi = -1.0;
-            continue;
-          }
-          double t0 = (0.0 - A[r]) / B[r], t1 = (res - A[r]) / B[r];
-          if (t0 > t1) std::swap(t0, t1);
-          tLo = std::max(tLo, t0);
-          tHi = std::min(tHi, t1);
-        }
-        // Fig. 7: the ray starts at the back of the box, or at the visible surface when that
-        // is nearer, and ends at the front of the box (or the eye).
-        const double depth = g.depth[i];
-        const double tStart = std::min(tHi, depth);
-        if (!(tStart > tLo)) continue;
-        const double speed = std::sqrt(B[0] * B[0] + B[1] * B[1] + B[2] * B[2]);  // voxels per t
-        const double length = (tStart - tLo) * speed;                            // voxels
-        const int steps = int(std::ceil(length));
-        const double dt = (tStart - tLo) / steps;
-        const double segment = length / steps;  // ≤ one voxel per sample
-        float sum = 0.0f;
-        for (int s = 0; s < steps; ++s) {  // from the surface toward the eye (midpoints)
-          const double t = tStart - (s + 0.5) * dt;
-          sum += Trilinear(data, res, A[0] + B[0] * t, A[1] + B[1] * t, A[2] + B[2] * t);
-        }
-        // The accumulated occupancy, in units of the glow width, mapped to an opacity by
-        // a/(1 + a): 0 for nothing crossed, rising smoothly and saturating below 1 (no exp).
-        const float a = float(sum * segment * toWidth);
-        out = strength * (a / (1.0f + a));
+        const uint32_t id = g.primitiveId[i0 + size_t(x)];
+        if (id < sel.size() && sel[id]) halo[i0 + size_t(x)] = 0.0f;
       }
+    }
   });
+}
+
+}  // namespace
+
+void TraceHalos(const HaloVolume& vol, const raster::Camera& camera, const raster::GBuffer& g,
+                const HighlightOptions& o, std::span<float> halo) {
+  RunHalos(vol, camera, g, o, halo, detail::HaloRow);
+}
+
+void TraceHalosScalar(const HaloVolume& vol, const raster::Camera& camera, const raster::GBuffer& g,
+                      const HighlightOptions& o, std::span<float> halo) {
+  RunHalos(vol, camera, g, o, halo, detail::HaloRowScalar);
 }
 
 void CompositeHalos(std::span<const float> halo, int gw, int s, int width, int height,
@@ -254,3 +442,4 @@ void CompositeHalos(std::span<const float> halo, int gw, int s, int width, int h
 }
 
 }  // namespace softmol::effects
+#endif  // HWY_ONCE

@@ -2,12 +2,12 @@
 // (Hermosilla et al. 2015, §6.1-6.2, Fig. 7). A second occupancy pyramid holds only the
 // selected atoms; its occupancy is resampled and dilated into a padded halo volume (which, for
 // temporal halos, keeps a fixed box and decays from frame to frame instead of being cleared);
-// for each G-buffer sample an eye ray is marched from the sample's depth (or the far side of
-// the volume) toward the eye through the volume, the occupancy it crosses is accumulated and
-// turned into a halo opacity. Because the march starts at the visible surface and only looks
-// in front of it, a selection hidden behind other atoms still glows wherever its halo is not
-// itself covered (around the occluder's silhouette), as in the paper. Deterministic for any
-// thread count: every sample and voxel is computed independently in a fixed order.
+// for each G-buffer sample the eye ray is marched through the volume's occupied box, from its
+// back toward the eye, in two parts split at the sample's depth: the glow in front of the
+// visible surface (Fig. 7's ray) and the glow behind it, seen through the surface as through a
+// veil (HighlightOptions::hidden), so a selection buried in the protein still shows as a glow
+// over the surface that hides it. Deterministic for any thread count: every sample and voxel
+// is computed independently in a fixed order.
 #pragma once
 
 #include <cstdint>
@@ -30,6 +30,9 @@ struct HighlightOptions {
   glm::vec3 color{1.0f, 0.6038f, 0.0f};  // linear RGB (sRGB ffcc00)
   float strength = 0.8f;                 // peak opacity scale, [0, 1]
   float width = 1.5f;                    // Å: how far the glow reaches beyond the atoms
+  // Share of the glow behind the visible surface that shows through it, [0, 1]: the surface
+  // is a veil over a hidden selection (see TraceHalos). 0: Fig. 7's march only.
+  float hidden = 0.5f;
   // Temporal halos (§6.2): trail duration T and the time since the previous frame, in the same
   // unit (the CLI uses ps of simulation time). trail <= 0: the volume is rebuilt every frame.
   double trail = 0.0;
@@ -45,6 +48,14 @@ struct HaloVolume {
   std::vector<float> value;
   bool valid = false;     // holds a previous frame (temporal halos decay it)
   bool fixedBox = false;  // temporal: the box was chosen once and is kept
+  // The voxels holding a value > 0 lie in [occupiedLo, occupiedHi) on each axis (empty when
+  // lo ≥ hi): rays are clipped to that box, where a trail's scene-wide volume is mostly 0.
+  int occupiedLo[3] = {0, 0, 0}, occupiedHi[3] = {0, 0, 0};
+  // Empty-space skipping: one flag per block of kHaloBlock³ voxels (index (z·n + y)·n + x,
+  // n = blockResolution), 1 when a voxel within one voxel of the block holds a value > 0,
+  // i.e. when a trilinear lookup at a point of the block can read something other than 0.
+  std::vector<float> blockOccupied;
+  int blockResolution = 0;
   std::vector<float> scratch[2];  // the current frame's occupancy and dilation passes
 };
 
@@ -63,15 +74,52 @@ float TrailDecrement(double frameDelta, double trail);
 void UpdateHaloVolume(const ao::OccupancyPyramid& selection, const HighlightOptions& options,
                       const raster::BoundingSphere& sceneBounds, HaloVolume& volume);
 
-// One halo opacity per G-buffer sample (index y·width + x) into `halo`: the march of Fig. 7;
-// 0 on samples whose primitive is a selected sphere. `camera` is the G-buffer's.
+// One halo opacity per G-buffer sample (index y·width + x) into `halo`: the march of Fig. 7
+// in front of the sample's depth, composited over `hidden` × the march behind it; 0 on
+// samples whose primitive is a selected sphere. `camera` is the G-buffer's.
 void TraceHalos(const HaloVolume& volume, const raster::Camera& camera,
                 const raster::GBuffer& gbuffer, const HighlightOptions& options,
                 std::span<float> halo);
+
+// Scalar twin of TraceHalos (the same bits, slowly). For tests.
+void TraceHalosScalar(const HaloVolume& volume, const raster::Camera& camera,
+                      const raster::GBuffer& gbuffer, const HighlightOptions& options,
+                      std::span<float> halo);
 
 // Composites the halo over resolved premultiplied RGBA (top row first, `ssaa`² samples per
 // pixel, averaged in a fixed order): rgba = rgba·(1 − h) + h·(color, 1).
 void CompositeHalos(std::span<const float> halo, int gbufferWidth, int ssaa, int width,
                     int height, glm::vec3 color, std::span<float> rgba);
 
+namespace detail {
+
+inline constexpr float kHaloFar = 3.0e38f;  // "no bound yet" for a ray's clip interval
+inline constexpr int kHaloBlock = 4;        // voxels per side of an empty-space block
+
+// Everything per frame the march needs (computed once in double, then rounded).
+struct HaloConstants {
+  // Eye space → halo-grid voxel units g = offset + m·e (m row-major).
+  float m[9], offset[3];
+  float halfWidth, halfHeight, pixelScale;
+  bool ortho;
+  int width;
+  float boxLo[3], boxHi[3];  // the clip box, voxel units: the occupied voxels padded by one
+  const float* data;         // the halo volume, res³
+  int res;
+  float resF;
+  const float* blocks;       // HaloVolume::blockOccupied, blockRes³
+  int blockRes;
+  float blockResF;
+  float toWidth;             // voxels → glow widths
+  float strength, hidden;    // HighlightOptions::strength and ::hidden, clamped to [0, 1]
+};
+HaloConstants MakeHaloConstants(const HaloVolume& volume, const raster::Camera& camera,
+                                const HighlightOptions& options, int width);
+
+// One row of halo opacities (before the selection's stencil, which the caller applies);
+// `depth` and `halo` point at the row. Thread-safe for distinct rows. SIMD and scalar twins.
+void HaloRow(const HaloConstants& k, int y, const float* depth, float* halo) noexcept;
+void HaloRowScalar(const HaloConstants& k, int y, const float* depth, float* halo) noexcept;
+
+}  // namespace detail
 }  // namespace softmol::effects
