@@ -19,6 +19,8 @@ int main(int argc, char** argv) {
   softmol::cli::RenderArgs render;
   softmol::cli::AddInfoCommand(app, info);
   CLI::App* renderCommand = softmol::cli::AddRenderCommand(app, render);
+  softmol::cli::BakeArgs bake;
+  softmol::cli::AddBakeCommand(app, bake);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -30,6 +32,7 @@ int main(int argc, char** argv) {
       if (!render.scene.empty()) softmol::cli::ApplySceneFile(*renderCommand, render.scene);
       return softmol::cli::RunRender(render);
     }
+    if (app.got_subcommand("bake")) return softmol::cli::RunBake(bake);
     return 1;
   } catch (const softmol::io::InputError& e) {
     std::fprintf(stderr, "softmol: %s\n", e.what());

@@ -97,6 +97,11 @@ io::ImageFile ToExr(const effects::RenderedFrame& f, bool withColor) {
   return img;
 }
 
+glm::vec3 LinearColor(const std::string& hex, const char* option) {
+  const effects::LinearRgb c = effects::UnpackSrgb(ParseHexColor(hex, option));
+  return glm::vec3(c.r, c.g, c.b);
+}
+
 }  // namespace
 
 CLI::App* AddRenderCommand(CLI::App& app, RenderArgs& a) {
@@ -118,8 +123,9 @@ CLI::App* AddRenderCommand(CLI::App& app, RenderArgs& a) {
   c->add_option("--background", a.background, "Background colour RRGGBB (sRGB hex)")->capture_default_str();
   c->add_flag("--transparent", a.transparent, "Transparent background (alpha 0)");
   c->add_option("--aov", a.aov, "Extra outputs: depth,normal,id,ao (EXR channels Z, N.x N.y N.z, id, AO)");
-  c->add_option("--ao", a.ao, "Ambient occlusion: none, cone (occupancy pyramid, per frame) or reference (ray traced)")
-      ->capture_default_str()->check(CLI::IsMember({"none", "cone", "reference"}));
+  c->add_option("--ao", a.ao, "Ambient occlusion: none, baked (shadow maps into per-atom patches, once per structure), cone (occupancy pyramid, per frame) or reference (ray traced)")
+      ->capture_default_str()->check(CLI::IsMember({"none", "baked", "cone", "reference"}));
+  AddBakeFlags(*c, a.bake);
   c->add_option("--cones", a.cones, "Cones per pixel for --ao cone")->capture_default_str()->check(CLI::IsMember({3, 5, 9}));
   c->add_option("--ao-rays", a.aoRays, "Rays per pixel for --ao reference")->capture_default_str()->check(CLI::Range(1, 65536));
   c->add_option("--ao-grid", a.aoGrid, "Finest occupancy grid resolution for --ao cone")->capture_default_str()->check(CLI::IsMember({32, 64, 128, 256}));
@@ -133,6 +139,24 @@ CLI::App* AddRenderCommand(CLI::App& app, RenderArgs& a) {
   c->add_option("--highlight-color", a.highlightColor, "Highlight halo colour RRGGBB (sRGB hex)")->capture_default_str();
   c->add_option("--highlight-strength", a.highlightStrength, "Peak opacity of the highlight halo")->capture_default_str()->check(CLI::Range(0.0, 1.0));
   c->add_option("--highlight-trail", a.highlightTrail, "Temporal halo: the highlight leaves a wake lasting this many ps of simulation time (needs --trajectory; 1 ps per frame when the trajectory has no time step)")->check(CLI::PositiveNumber);
+  c->add_option("--contours", a.contours, "Contour lines around atoms and bonds, WIDTH Å (Tarini §5.1)")->expected(0, 1)->default_str("0.3")->check(CLI::Range(0.0, 100.0));
+  c->add_flag("--contour-depth-aware", a.contourDepthAware, "Thin contour lines where the depth step behind them is small");
+  c->add_option("--contour-color", a.contourColor, "Contour line colour RRGGBB")->capture_default_str();
+  c->add_option("--near-clip", a.nearClip, "Cut the molecule at this distance (Å) from the eye, capping cut atoms (Tarini §5.3)")->check(CLI::PositiveNumber);
+  c->add_flag("--shadows", a.shadows, "Soft shadows: shadow map + percentage-closer filtering (Sigg §4)");
+  c->add_option("--shadow-map", a.shadowMap, "Shadow map side in texels")->capture_default_str()->check(CLI::Range(64, 8192));
+  c->add_option("--pcf-samples", a.pcfSamples, "PCF taps per sample")->capture_default_str()->check(CLI::Range(1, 256));
+  c->add_option("--pcf-pretest", a.pcfPretest, "Taps of the PCF pre-test (0: off)")->capture_default_str()->check(CLI::Range(0, 256));
+  c->add_option("--shadow-softness", a.shadowSoftness, "PCF filter radius, Å (penumbra width)")->capture_default_str()->check(CLI::Range(0.0, 100.0));
+  c->add_flag("--outlines", a.outlines, "Silhouette and crease lines: Sobel on depth and normals (Sigg §4)");
+  c->add_option("--outline-color", a.outlineColor, "Outline colour RRGGBB")->capture_default_str();
+  c->add_flag("--halos", a.halos, "Depth-aware halos around atoms (Tarini §5.2)");
+  c->add_option("--halo-size", a.haloSize, "Halo width beyond each atom, Å")->capture_default_str();
+  c->add_option("--halo-strength", a.haloStrength, "Opacity of one halo over a full depth gap")->capture_default_str();
+  c->add_option("--halo-max-gap", a.haloMaxGap, "Depth gap (Å) behind a halo that makes it fully dark")->capture_default_str();
+  c->add_option("--halo-color", a.haloColor, "Halo colour RRGGBB (000000 darkens, ffffff lightens)")->capture_default_str();
+  c->add_option("--depth-cue", a.depthCue, "Fade toward the fog colour with depth, STRENGTH at the back of the molecule")->expected(0, 1)->default_str("0.5")->check(CLI::Range(0.0, 1.0));
+  c->add_option("--fog-color", a.fogColor, "Depth-cue colour RRGGBB (default: the background)");
   c->add_option("--backend", a.backend, "cpu | gl (the OpenGL 4.5 mirror through EGL, surfaceless)")
       ->capture_default_str()->check(CLI::IsMember({"cpu", "gl"}));
   c->add_flag("-q,--quiet", a.quiet, "Print nothing on success");
@@ -158,6 +182,13 @@ int RunRender(const RenderArgs& a) {
     throw io::InputError({"--aov"}, "the AO output is not mirrored in the GL backend yet (use --backend cpu)");
   if (a.backend == "gl" && !a.highlight.empty())
     throw io::InputError({"--highlight"}, "halos are not mirrored in the GL backend yet (use --backend cpu)");
+  if (a.backend == "gl") {
+    // Effects whose passes have no GL twin yet (gl/README.md lists what is mirrored).
+    const std::pair<bool, const char*> cpuOnly[] = {
+        {a.shadows, "--shadows"}, {a.outlines, "--outlines"}, {a.halos, "--halos"}};
+    for (const auto& [on, flag] : cpuOnly)
+      if (on) throw io::InputError({flag}, std::string(flag) + " is not mirrored in the GL backend yet (use --backend cpu)");
+  }
   if (a.highlightTrail > 0 && a.trajectory.empty())
     throw io::InputError({"--highlight-trail"}, "--highlight-trail needs --trajectory FILE (a trail follows the selection across frames)");
   if (a.highlightTrail > 0 && a.highlight.empty())
@@ -176,20 +207,43 @@ int RunRender(const RenderArgs& a) {
   ro.transparent = a.transparent;
   ro.aovs = aovs;
   ro.tileSize = a.tileSize;
-  ro.ao = a.ao == "cone" ? effects::AoMode::kCone
-          : a.ao == "reference" ? effects::AoMode::kReference : effects::AoMode::kNone;
+  ro.ao = a.ao == "baked"       ? effects::AoMode::kBaked
+          : a.ao == "cone"      ? effects::AoMode::kCone
+          : a.ao == "reference" ? effects::AoMode::kReference
+                                : effects::AoMode::kNone;
   if (ro.ao != effects::AoMode::kNone) {
     // With AO the ambient term carries the shape (QuteMol's look): more ambient, less direct.
     ro.shading.ambient = 0.75f;
     ro.shading.diffuse = 0.40f;
     ro.shading.specular = 0.25f;
   }
+  ValidateBakeFlags(a.bake);
   ro.cone.cones = a.cones;
   ro.reference.rays = a.aoRays;
   ro.pyramid.resolution = a.aoGrid;
-  const uint32_t bg = ParseHexColor(a.background, "--background");
-  const effects::LinearRgb bgLinear = effects::UnpackSrgb(bg);
-  ro.background = glm::vec3(bgLinear.r, bgLinear.g, bgLinear.b);
+  ro.background = LinearColor(a.background, "--background");
+  ro.contourWidth = float(a.contours);
+  ro.contourDepthAware = a.contourDepthAware;
+  ro.contourColor = LinearColor(a.contourColor, "--contour-color");
+  ro.nearClip = float(a.nearClip);
+  ro.shadows = a.shadows;
+  ro.shadow.mapSize = a.shadowMap;
+  ro.shadow.pcfSamples = a.pcfSamples;
+  ro.shadow.pretestSamples = a.pcfPretest;
+  ro.shadow.filterRadius = float(a.shadowSoftness);
+  if (a.pcfPretest > a.pcfSamples)
+    throw io::InputError({"--pcf-pretest"}, "the pre-test takes at most --pcf-samples taps");
+  effects::ValidateShadowOptions(ro.shadow);
+  ro.outlines = a.outlines;
+  ro.outlineColor = LinearColor(a.outlineColor, "--outline-color");
+  ro.depthHalos = a.halos;
+  ro.depthHalo.size = float(a.haloSize);
+  ro.depthHalo.strength = float(a.haloStrength);
+  ro.depthHalo.maxGap = float(a.haloMaxGap);
+  effects::ValidateDepthHaloOptions(ro.depthHalo);
+  ro.depthHaloColor = LinearColor(a.haloColor, "--halo-color");
+  ro.depthCue = float(a.depthCue);
+  ro.fogColor = a.fogColor.empty() ? ro.background : LinearColor(a.fogColor, "--fog-color");
   if (int64_t(size.width) * size.height * a.ssaa * a.ssaa > (int64_t(1) << 28))
     throw io::InputError({"--ssaa"}, "size × ssaa² is more than 2^28 samples");
   std::unique_ptr<tbb::global_control> threads;
@@ -227,6 +281,7 @@ int RunRender(const RenderArgs& a) {
   trace.AddComplete("representation", "load", t, repMs);
   if (scene.size() == 0)
     throw io::InputError({a.molecule}, "nothing to draw in style '" + a.style + "'");
+  if (ro.ao == effects::AoMode::kBaked) ro.bake = MakeBakeOptions(a.bake, scene);
   if (highlight) {
     // Halos need the selection's spheres: the per-atom styles draw sphere i for atom i.
     if (scene.spheres.size() != loaded.molecule.atomCount())

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstring>
 
 #include <tbb/parallel_for.h>
 
@@ -46,7 +47,36 @@ void ResolveAovs(const raster::GBuffer& g, const std::vector<float>& ao, const R
   });
 }
 
+// What the baked atlas depends on: the primitives and the bake options (not the camera).
+uint64_t BakeKey(const raster::PrimitiveScene& scene, const ao::BakeOptions& b) {
+  uint64_t h = raster::GeometryHash(scene);
+  const auto mix = [&h](uint64_t v) { h = (h ^ v) * 0x100000001B3ull; };
+  mix(uint64_t(b.directions)), mix(uint64_t(b.shadowMapSize));
+  uint32_t bias;
+  std::memcpy(&bias, &b.depthBias, sizeof bias);
+  mix(bias);
+  mix(uint64_t(b.atlas.textureSide)), mix(uint64_t(b.atlas.patchSize));
+  mix(uint64_t(b.atlas.sphereMap)), mix(uint64_t(b.atlas.cylindersPerPatch));
+  return h;
+}
+
 }  // namespace
+
+ShadeInputs MakeShadeInputs(const RenderOptions& o, const raster::PrimitiveScene& scene,
+                            const raster::Camera& camera) {
+  ShadeInputs in;
+  in.lineColor = o.contourColor;
+  in.outlineColor = o.outlineColor;
+  in.haloColor = o.depthHaloColor;
+  if (o.depthCue > 0) {
+    // The cue spans the molecule's own depth range, whatever the near and far planes.
+    SceneDepthRange(scene.Bounds(), camera, in.cueNear, in.cueFar);
+    in.cueStrength = o.depthCue;
+    in.fogColor = o.fogColor;
+  }
+  if (o.nearClip > 0) in.clipNear = o.nearClip, in.clipLighten = o.nearClipLighten;
+  return in;
+}
 
 uint32_t RequiredChannels(const RenderOptions& o) { return GBufferChannels(PlanPasses(o)); }
 
@@ -86,6 +116,10 @@ void RenderFrame(const raster::PrimitiveScene& scene, const raster::Camera& came
         raster::FrameOptions fo;
         fo.tileSize = o.tileSize;
         fo.channels = GBufferChannels(plan);
+        fo.contourWidth = o.contourWidth;
+        fo.contourDepthAware = o.contourDepthAware;
+        fo.contourDepthScale = o.contourDepthScale;
+        fo.nearClip = o.nearClip;
         f.rasterStats = raster::RenderGBuffer(scene, cam, fo, g, &res.workspace);
         break;
       }
@@ -99,15 +133,59 @@ void RenderFrame(const raster::PrimitiveScene& scene, const raster::Camera& came
       case PassId::kReferenceAo:
         ao = ao::ReferenceAo(scene, cam, g, o.reference);
         break;
-      case PassId::kAoBake:
+      case PassId::kAoBake: {
+        // Baked once per scene (Tarini §4): the same atlas serves every later frame and camera.
+        const uint64_t key = BakeKey(scene, o.bake);
+        if (res.atlasBaked && res.atlasKey == key) {
+          name += " (reused)";
+        } else {
+          res.atlas = ao::BakeAo(scene, o.bake, &res.bakeStats);
+          res.atlasKey = key;
+          res.atlasBaked = true;
+        }
+        break;
+      }
       case PassId::kBakedAoLookup:
-        SOFTMOL_CHECK(false);  // not planned yet
+        ao.resize(size_t(g.width) * size_t(g.height));
+        ao::LookupBakedAo(res.atlas, g, ao);
         break;
-      case PassId::kShading:
-        // Deferred shading fused with the supersample resolve.
+      case PassId::kShadowMap:
+        BuildShadowMap(scene, cam, o.shading.lightDirection, o.shadow, res.shadowMap);
+        break;
+      case PassId::kShadows:
+        res.shadow.resize(size_t(g.width) * size_t(g.height));
+        f.shadowStats = ShadowFactors(res.shadowMap, cam, g, o.shadow, res.shadow);
+        break;
+      case PassId::kOutlines:
+        res.outline.resize(size_t(g.width) * size_t(g.height));
+        SobelOutlines(g, cam, o.outline, res.outline);
+        break;
+      case PassId::kDepthHalos: {
+        // Atoms cut away by the near clip cast no halo (their discs are clipped with them).
+        raster::Camera haloView = cam;
+        if (o.nearClip > 0) {
+          if (haloView.nearPlane <= 0 || haloView.farPlane <= 0) raster::FitNearFar(haloView, scene);
+          haloView.nearPlane = std::max(haloView.nearPlane, double(o.nearClip));
+        }
+        res.depthHalo.resize(size_t(g.width) * size_t(g.height));
+        if (haloView.nearPlane < haloView.farPlane || haloView.nearPlane <= 0)
+          ComputeDepthHalos(scene, haloView, g, o.depthHalo, res.depthHalo);
+        else  // the clip plane is beyond the molecule: every disc is cut away
+          std::fill(res.depthHalo.begin(), res.depthHalo.end(), 0.0f);
+        break;
+      }
+      case PassId::kShading: {
+        // Deferred shading fused with the compositing of every effect and the supersample
+        // resolve (order in effects/shading.h).
+        ShadeInputs in = MakeShadeInputs(o, scene, cam);
+        in.ambientOcclusion = ao;
+        if (o.shadows) in.shadow = res.shadow;
+        if (o.outlines) in.outline = res.outline;
+        if (o.depthHalos) in.halo = res.depthHalo;
         f.rgba.resize(4 * n);  // every element is written: no need to clear
-        ShadeAndResolve(g, o.ssaa, o.shading, Backdrop{o.background, o.transparent}, ao, f.rgba);
+        ShadeAndResolve(g, o.ssaa, o.shading, Backdrop{o.background, o.transparent}, in, f.rgba);
         break;
+      }
       case PassId::kHaloPyramid:
         // §6.1: the selection's pyramid (same options as the AO one, its own box), resampled
         // into the halo volume; with a trail (§6.2) the volume decays instead of being rebuilt.
@@ -115,7 +193,10 @@ void RenderFrame(const raster::PrimitiveScene& scene, const raster::Camera& came
         if (res.haloScene.spheres.size() == 0) {
           res.haloVolume.valid = false;  // nothing selected is drawable: nothing to march
         } else {
-          ao::UpdateOccupancyPyramid(res.haloScene, o.pyramid, res.haloPyramid);
+          // The halo volume is at most 64³ (object_halos.h): a finer pyramid would be wasted.
+          ao::PyramidOptions haloGrid = o.pyramid;
+          haloGrid.resolution = std::min(haloGrid.resolution, 64);
+          ao::UpdateOccupancyPyramid(res.haloScene, haloGrid, res.haloPyramid);
           UpdateHaloVolume(res.haloPyramid, o.highlight, scene.Bounds(), res.haloVolume);
         }
         haloReady = res.haloVolume.valid;

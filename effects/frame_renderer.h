@@ -13,9 +13,14 @@
 
 #include "ao/cone_trace.h"
 #include "ao/occupancy_pyramid.h"
+#include "ao/patch_atlas.h"
 #include "ao/reference_ao.h"
+#include "ao/shadow_bake.h"
+#include "effects/depth_halos.h"
 #include "effects/object_halos.h"
+#include "effects/outlines.h"
 #include "effects/shading.h"
+#include "effects/shadows.h"
 #include "raster/camera.h"
 #include "raster/frame.h"
 #include "raster/primitives.h"
@@ -28,6 +33,7 @@ enum Aov : uint32_t { kAovDepth = 1, kAovNormal = 2, kAovId = 4, kAovAo = 8 };
 // Which ambient occlusion scales the ambient term (DESIGN.md defines AO; 1 = open).
 enum class AoMode {
   kNone,       // no AO pass runs
+  kBaked,      // shadow-map AO baked into per-atom patches once per scene (Tarini et al.)
   kCone,       // occupancy pyramid + cone tracing, rebuilt per frame (Hermosilla et al.)
   kReference,  // ray-traced ground truth in double precision (slow; the yardstick)
 };
@@ -41,12 +47,32 @@ struct RenderOptions {
   int tileSize = 32;
   ShadingOptions shading;
   AoMode ao = AoMode::kNone;
+  ao::BakeOptions bake;           // kBaked
   ao::PyramidOptions pyramid;     // kCone
   ao::ConeAoOptions cone;         // kCone
   ao::ReferenceAoOptions reference;  // kReference
   // Object-space / temporal halos around a selection (Hermosilla et al. §6): runs the passes
   // "halo pyramid" and "halos" when highlight.spheres selects something and colour is wanted.
   HighlightOptions highlight;
+
+  // Edge cueing and shadows (Tarini et al. §5, Sigg et al. §4). Each is off by default and each
+  // adds its own passes (effects/pass_list.h); all combine with each other and any AO.
+  float contourWidth = 0.0f;  // Å (ξ of §5.1); 0 = no contour lines
+  bool contourDepthAware = false;
+  float contourDepthScale = 10.0f;  // η: Å of depth per Å of line
+  glm::vec3 contourColor{0.0f, 0.0f, 0.0f};  // linear RGB
+  float nearClip = 0.0f;      // Å from the eye: cut atoms get flat caps (§5.3); 0 = off
+  float nearClipLighten = 3.0f;  // Å behind the clip plane over which AO fades to open
+  bool shadows = false;
+  ShadowOptions shadow;
+  bool outlines = false;
+  OutlineOptions outline;
+  glm::vec3 outlineColor{0.0f, 0.0f, 0.0f};
+  bool depthHalos = false;    // Tarini §5.2 (not the highlight halos above)
+  DepthHaloOptions depthHalo;
+  glm::vec3 depthHaloColor{0.0f, 0.0f, 0.0f};
+  float depthCue = 0.0f;      // strength in [0,1] at the far side of the molecule; 0 = off
+  glm::vec3 fogColor{1.0f, 1.0f, 1.0f};  // what depth cueing blends toward (the background)
 };
 
 struct PassTiming {
@@ -64,6 +90,7 @@ struct RenderedFrame {
   std::vector<float> ao;                         // kAovAo: accessibility in [0,1], 1 background
   std::vector<PassTiming> passes;                // exactly the passes that ran, in order
   raster::FrameStats rasterStats{};
+  ShadowStats shadowStats{};                     // when the shadows pass ran
   double totalMs = 0;
 };
 
@@ -73,7 +100,13 @@ struct FrameResources {
   raster::FrameWorkspace workspace;
   raster::GBuffer gbuffer;
   ao::OccupancyPyramid pyramid;  // rebuilt only when the scene moved
+  ao::AoAtlas atlas;             // baked AO, re-baked only when the scene or bake options change
+  uint64_t atlasKey = 0;
+  bool atlasBaked = false;
+  ao::BakeStats bakeStats;
   std::vector<float> ao;         // one accessibility per G-buffer sample
+  ShadowMap shadowMap;
+  std::vector<float> shadow, outline, depthHalo;  // one value per G-buffer sample
   // Halos: the selection's own scene and pyramid, the halo volume (kept between frames: with
   // a trail it decays instead of being rebuilt) and one halo opacity per G-buffer sample.
   raster::PrimitiveScene haloScene;
@@ -81,6 +114,11 @@ struct FrameResources {
   HaloVolume haloVolume;
   std::vector<float> halo;
 };
+
+// The compositing parameters of the options (colours, depth-cue range, near-clip lightening);
+// the per-sample buffers (AO, shadow, outline, halo) are left for the caller to attach.
+ShadeInputs MakeShadeInputs(const RenderOptions& options, const raster::PrimitiveScene& scene,
+                            const raster::Camera& camera);
 
 // The G-buffer channels the options need (what "only what the scene calls for" means here).
 uint32_t RequiredChannels(const RenderOptions& options);

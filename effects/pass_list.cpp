@@ -21,6 +21,11 @@ std::vector<PlannedPass> CandidatePasses(const RenderOptions& o) {
   switch (o.ao) {
     case AoMode::kNone:
       break;
+    case AoMode::kBaked:
+      c.push_back({PassId::kAoBake, "ao bake", kBufScene, kBufAoAtlas});
+      c.push_back({PassId::kBakedAoLookup, "baked ao lookup",
+                   kBufAoAtlas | kBufPrimitiveId | kBufSurfaceCoord, kBufAo});
+      break;
     case AoMode::kCone:
       c.push_back({PassId::kOccupancyPyramid, "occupancy pyramid", kBufScene, kBufOccupancy});
       c.push_back({PassId::kConeAo, "cone ao", kBufOccupancy | kBufDepth | kBufNormal, kBufAo});
@@ -30,9 +35,22 @@ std::vector<PlannedPass> CandidatePasses(const RenderOptions& o) {
                    kBufScene | kBufDepth | kBufNormal | kBufPrimitiveId, kBufAo});
       break;
   }
+  if (o.shadows) {
+    c.push_back({PassId::kShadowMap, "shadow map", kBufScene, kBufShadowMap});
+    c.push_back({PassId::kShadows, "shadows", kBufShadowMap | kBufDepth | kBufNormal, kBufShadow});
+  }
+  if (o.outlines)
+    c.push_back({PassId::kOutlines, "outlines", kBufDepth | kBufNormal | kBufPrimitiveId, kBufOutline});
+  if (o.depthHalos) c.push_back({PassId::kDepthHalos, "depth halos", kBufScene | kBufDepth, kBufDepthHalo});
   if (o.color) {
     uint64_t reads = kBufNormal | kBufBaseColor | kBufPrimitiveId;
     if (o.ao != AoMode::kNone) reads |= kBufAo;
+    if (o.shadows) reads |= kBufShadow;
+    if (o.outlines) reads |= kBufOutline;
+    if (o.depthHalos) reads |= kBufDepthHalo;
+    if (o.contourWidth > 0) reads |= kBufLine;
+    if (o.nearClip > 0) reads |= kBufCapped | kBufDepth;  // caps open, AO lightened near the plane
+    if (o.depthCue > 0) reads |= kBufDepth;
     c.push_back({PassId::kShading, "shading", reads, kBufColor});
     if (HighlightWanted(o)) {
       c.push_back({PassId::kHaloPyramid, "halo pyramid", kBufScene,

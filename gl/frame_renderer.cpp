@@ -35,11 +35,12 @@ void CheckGl(const char* where) {
 
 // G-buffer pass shared by both entry points; returns with the targets filled on the GPU.
 GlFrameStats DrawGBuffer(FrameRenderer::Impl& m, const raster::PrimitiveScene& scene,
-                         const raster::Camera& camera, uint32_t channels) {
+                         const raster::Camera& camera, const raster::FrameOptions& options) {
   GlFrameStats s;
+  const uint32_t channels = options.channels;
   const auto t0 = Clock::now();
   raster::detail::FrameConstants fc;
-  s.primitivesDrawn = m.tileKernel.Prepare(scene, camera, channels, fc);
+  s.primitivesDrawn = m.tileKernel.Prepare(scene, camera, options, fc);
   const auto t1 = Clock::now();
   m.tileKernel.Upload();
   m.gbuffer.Resize(camera.width, camera.height, channels);
@@ -72,7 +73,9 @@ GlFrameStats FrameRenderer::RenderGBuffer(const raster::PrimitiveScene& scene,
                                           const raster::Camera& camera, uint32_t channels,
                                           raster::GBuffer& out) {
   SOFTMOL_CHECK(camera.width > 0 && camera.height > 0);
-  GlFrameStats s = DrawGBuffer(*impl_, scene, camera, channels);
+  raster::FrameOptions options;
+  options.channels = channels;
+  GlFrameStats s = DrawGBuffer(*impl_, scene, camera, options);
   const auto t0 = Clock::now();
   detail::ReadBack(impl_->gbuffer, channels, out);
   CheckGl("the G-buffer read-back");
@@ -89,8 +92,14 @@ GlFrameStats FrameRenderer::RenderFrame(const raster::PrimitiveScene& scene,
   raster::Camera cam = camera;
   cam.width = camera.width * o.ssaa;
   cam.height = camera.height * o.ssaa;
-  const uint32_t channels = effects::RequiredChannels(o);
-  GlFrameStats s = DrawGBuffer(*impl_, scene, cam, channels);
+  raster::FrameOptions fo;
+  fo.channels = effects::RequiredChannels(o);
+  fo.contourWidth = o.contourWidth;
+  fo.contourDepthAware = o.contourDepthAware;
+  fo.contourDepthScale = o.contourDepthScale;
+  fo.nearClip = o.nearClip;
+  const uint32_t channels = fo.channels;
+  GlFrameStats s = DrawGBuffer(*impl_, scene, cam, fo);
   const auto t1 = Clock::now();
   f.passes.clear();
   f.passes.push_back({"gl gbuffer", 0.0, Ms(t0, t1)});
@@ -99,7 +108,11 @@ GlFrameStats FrameRenderer::RenderFrame(const raster::PrimitiveScene& scene,
 
   auto t2 = t1;
   if (o.color) {
-    impl_->shading.Run(impl_->gbuffer, o.ssaa, o.shading, effects::Backdrop{o.background, o.transparent});
+    // Lines, caps and the depth cue need only the G-buffer; the CPU-computed buffers (shadow,
+    // outline, halo, AO) are not mirrored, so their spans stay empty.
+    const effects::ShadeInputs inputs = effects::MakeShadeInputs(o, scene, cam);
+    impl_->shading.Run(impl_->gbuffer, o.ssaa, o.shading, effects::Backdrop{o.background, o.transparent},
+                       &inputs);
     glFinish();
     CheckGl("the shading pass");
     t2 = Clock::now();

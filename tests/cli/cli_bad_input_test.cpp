@@ -75,6 +75,17 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"highlight_trail_without_trajectory", "render " + kPept + " -o %O --highlight all --highlight-trail 5", "--highlight-trail"},
         BadCase{"highlight_on_gl_backend", "render " + kPept + " -o %O --backend gl --highlight all", "--highlight"},
         BadCase{"bad_highlight_color", "render " + kPept + " -o %O --highlight all --highlight-color yellow", "--highlight-color"},
+        BadCase{"negative_contours", "render " + kPept + " -o %O --contours -1", "--contours"},
+        BadCase{"bad_contour_color", "render " + kPept + " -o %O --contours --contour-color 12345", "--contour-color"},
+        BadCase{"negative_near_clip", "render " + kPept + " -o %O --near-clip -3", "--near-clip"},
+        BadCase{"pretest_above_samples", "render " + kPept + " -o %O --shadows --pcf-samples 16 --pcf-pretest 32", "--pcf-pretest"},
+        BadCase{"tiny_shadow_map", "render " + kPept + " -o %O --shadows --shadow-map 8", "--shadow-map"},
+        BadCase{"zero_halo_size", "render " + kPept + " -o %O --halos --halo-size 0", "--halo-size"},
+        BadCase{"halo_strength_above_one", "render " + kPept + " -o %O --halos --halo-strength 2", "--halo-strength"},
+        BadCase{"depth_cue_above_one", "render " + kPept + " -o %O --depth-cue 1.5", "--depth-cue"},
+        BadCase{"odd_ao_directions", "render " + kPept + " -o %O --ao baked --ao-directions 7", "--ao-directions"},
+        BadCase{"ao_patch_too_big", "render " + kPept + " -o %O --ao baked --ao-patch 4096 --ao-texture 64", "--ao-"},
+        BadCase{"shadows_on_gl_backend", "render " + kPept + " -o %O --backend gl --shadows", "--"},
         BadCase{"info_missing", "info %D/missing.cif", "missing.cif"}),
     [](const testing::TestParamInfo<BadCase>& i) { return std::string(i.param.name); });
 

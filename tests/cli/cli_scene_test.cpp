@@ -47,6 +47,19 @@ TEST(CliScene, FlagsOverrideTheSceneAndPathsAreRelativeToIt) {
   EXPECT_EQ(img.channels, 4);  // the scene's "transparent" still applies
 }
 
+TEST(CliScene, TheDocumentedExampleRenders) {
+  const auto dir = ScratchDir("scene_example");
+  const std::string out = (dir / "example.png").string();
+  const CommandResult r = RunSoftmol("render --scene '" + std::string(SOFTMOL_DATA_DIR) +
+                                         "/../docs/example_scene.json' --size 96x72 --ssaa 1 --ao-directions 16 -o '" +
+                                         out + "'",
+                                     dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.out.find("ao bake"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("depth halos"), std::string::npos) << r.out;
+  EXPECT_EQ(io::ReadImage8(out).width, 96);
+}
+
 struct BadScene {
   const char* name;
   const char* json;

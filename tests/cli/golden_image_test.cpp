@@ -19,13 +19,41 @@
 namespace softmol::test {
 namespace {
 
+// Sets the effects of a scene (its camera is framed by then).
+using Configure = void (*)(effects::RenderOptions&, const raster::Camera&);
+
 struct GoldenScene {
   const char* name;
   const char* molecule;
   raster::Style style;
   int width, height, ssaa;
   double rotateX, rotateY, orthoHeight;
+  Configure configure = nullptr;
 };
+
+// Combined effects, as in the papers' figures.
+void ContoursShadowsOutlines(effects::RenderOptions& o, const raster::Camera&) {
+  o.contourWidth = 0.1f;  // sticks are 0.2 Å thick
+  o.contourDepthAware = true;
+  o.shadows = true;
+  o.shadow.mapSize = 1024;
+  o.outlines = true;
+}
+void BakedAoHalosCue(effects::RenderOptions& o, const raster::Camera&) {
+  o.ao = effects::AoMode::kBaked;
+  o.bake.directions = 64;
+  o.bake.shadowMapSize = 256;
+  o.shading.ambient = 0.75f, o.shading.diffuse = 0.40f, o.shading.specular = 0.25f;
+  o.depthHalos = true;
+  o.depthCue = 0.4f;
+}
+void ClippedConeAoContours(effects::RenderOptions& o, const raster::Camera& cam) {
+  o.ao = effects::AoMode::kCone;
+  o.cone.cones = 5;
+  o.shading.ambient = 0.75f, o.shading.diffuse = 0.40f, o.shading.specular = 0.25f;
+  o.nearClip = float(0.5 * (cam.nearPlane + cam.farPlane));  // through the middle of the molecule
+  o.contourWidth = 0.25f;
+}
 // ctest names the test by this (instead of the struct's bytes).
 void PrintTo(const GoldenScene& s, std::ostream* os) { *os << s.name; }
 
@@ -47,6 +75,7 @@ TEST_P(GoldenImage, MatchesExactly) {
   raster::FitNearFar(cam, scene);
   effects::RenderOptions ro;
   ro.ssaa = s.ssaa;
+  if (s.configure) s.configure(ro, cam);
   const effects::RenderedFrame f = effects::RenderFrame(scene, cam, ro);
   const std::vector<uint8_t> px = effects::EncodeSrgb8(f, false);
 
@@ -84,7 +113,13 @@ INSTANTIATE_TEST_SUITE_P(
     testing::Values(GoldenScene{"pept_spacefill", "pept.pdb", raster::Style::kSpacefill, 160, 120, 1, 0, 0, 0},
                     GoldenScene{"pept_balls_ssaa2", "pept.pdb", raster::Style::kBalls, 160, 120, 2, 20, 30, 0},
                     GoldenScene{"crambin_licorice", "1CRN.cif", raster::Style::kLicorice, 160, 120, 1, 0, 90, 0},
-                    GoldenScene{"il2_ortho_spacefill", "il2.pdb", raster::Style::kSpacefill, 128, 128, 1, 45, 0, 60}),
+                    GoldenScene{"il2_ortho_spacefill", "il2.pdb", raster::Style::kSpacefill, 128, 128, 1, 45, 0, 60},
+                    GoldenScene{"pept_balls_contours_shadows_outlines", "pept.pdb", raster::Style::kBalls, 320, 240,
+                                1, 20, 30, 0, ContoursShadowsOutlines},
+                    GoldenScene{"il2_baked_halos_cue", "il2.pdb", raster::Style::kSpacefill, 200, 150, 1, 0, 0, 0,
+                                BakedAoHalosCue},
+                    GoldenScene{"crambin_clipped_cone_contours", "1CRN.cif", raster::Style::kLicorice, 160, 120,
+                                2, 0, 90, 0, ClippedConeAoContours}),
     [](const testing::TestParamInfo<GoldenScene>& i) { return std::string(i.param.name); });
 
 }  // namespace

@@ -92,6 +92,47 @@ TEST(PassList, EachSceneRunsOnlyWhatItCallsFor) {
   EXPECT_EQ(PlanNames(o), (Names{"gbuffer", "shading"}));
 }
 
+TEST(PassList, EffectsAddOnlyTheirOwnPasses) {
+  RenderOptions o;
+  o.contourWidth = 0.3f;  // lines are drawn by the G-buffer pass itself: no pass of their own
+  auto plan = PlanPasses(o);
+  EXPECT_EQ(PlanNames(o), (Names{"gbuffer", "shading"}));
+  EXPECT_NE(plan[0].writes & kBufLine, 0u);
+  EXPECT_EQ(plan[0].writes & (kBufCapped | kBufSurfaceCoord), 0u);
+  o.contourWidth = 0;
+  o.nearClip = 10;
+  plan = PlanPasses(o);
+  EXPECT_EQ(PlanNames(o), (Names{"gbuffer", "shading"}));
+  EXPECT_NE(plan[0].writes & kBufCapped, 0u);
+  o.nearClip = 0;
+  o.shadows = true;
+  EXPECT_EQ(PlanNames(o), (Names{"gbuffer", "shadow map", "shadows", "shading"}));
+  o.shadows = false;
+  o.outlines = true;
+  EXPECT_EQ(PlanNames(o), (Names{"gbuffer", "outlines", "shading"}));
+  o.outlines = false;
+  o.depthHalos = true;
+  EXPECT_EQ(PlanNames(o), (Names{"gbuffer", "depth halos", "shading"}));
+  o.depthHalos = false;
+  o.depthCue = 0.5f;
+  EXPECT_EQ(PlanNames(o), (Names{"gbuffer", "shading"}));
+  o.ao = AoMode::kBaked;
+  plan = PlanPasses(o);
+  EXPECT_EQ(PlanNames(o), (Names{"gbuffer", "ao bake", "baked ao lookup", "shading"}));
+  EXPECT_NE(plan[0].writes & kBufSurfaceCoord, 0u) << "the baked lookup reads surface coordinates";
+  // Everything at once, in the order the passes run.
+  o.contourWidth = 0.3f, o.nearClip = 10, o.shadows = true, o.outlines = true, o.depthHalos = true;
+  o.highlight.spheres = {1};
+  o.aovs = kAovAo;
+  EXPECT_EQ(PlanNames(o), (Names{"gbuffer", "ao bake", "baked ao lookup", "shadow map", "shadows", "outlines",
+                                 "depth halos", "shading", "halo pyramid", "halos", "aovs"}));
+  // Without colour, only the AO feeds an output: every effect pass drops out.
+  o.color = false;
+  EXPECT_EQ(PlanNames(o), (Names{"gbuffer", "ao bake", "baked ao lookup", "aovs"}));
+  o.aovs = kAovDepth;
+  EXPECT_EQ(PlanNames(o), (Names{"gbuffer", "aovs"})) << "no AO bake when nobody reads AO";
+}
+
 TEST(PassList, PassesDeclareWhatTheyReadAndWrite) {
   RenderOptions o;
   o.ao = AoMode::kCone;
@@ -123,6 +164,24 @@ TEST(PassList, TheFrameRunsExactlyThePlan) {
   // The second frame of an unchanged scene reuses the pyramid, and says so.
   const RenderedFrame again = RenderFrame(scene, cam, o, &res);
   EXPECT_EQ(PassNames(again)[1], "occupancy pyramid (reused)");
+  // Every effect at once runs exactly its plan too; the atlas is baked once per scene.
+  o.ao = AoMode::kBaked;
+  o.bake.directions = 16;
+  o.bake.shadowMapSize = 64;
+  o.bake.atlas.textureSide = 64;
+  o.contourWidth = 0.2f, o.nearClip = 5.5f, o.shadows = true, o.outlines = true, o.depthHalos = true;
+  o.depthCue = 0.5f;
+  o.shadow.mapSize = 256;
+  const RenderedFrame all = RenderFrame(scene, cam, o, &res);
+  EXPECT_EQ(PassNames(all), PlanNames(o));
+  for (float v : all.rgba) ASSERT_TRUE(std::isfinite(v));
+  for (float v : all.ao) ASSERT_TRUE(v >= 0.0f && v <= 1.0f);
+  const RenderedFrame allAgain = RenderFrame(scene, cam, o, &res);
+  EXPECT_EQ(PassNames(allAgain)[1], "ao bake (reused)");
+  EXPECT_EQ(allAgain.rgba, all.rgba);
+  // A moved scene is baked again.
+  const auto moved = OneSphere({0.5, 0, 0});
+  EXPECT_EQ(PassNames(RenderFrame(moved, cam, o, &res))[1], "ao bake");
 }
 
 TEST(FrameRenderer, SupersampleResolveAveragesCoverage) {
