@@ -92,6 +92,7 @@ void RenderFrame(const raster::PrimitiveScene& scene, const raster::Camera& came
   SOFTMOL_CHECK(o.ssaa >= 1 && o.ssaa <= 4);
   const Clock::time_point t0 = Clock::now();
   f.passes.clear();
+  f.shadowStats = {};
   f.width = camera.width;
   f.height = camera.height;
   const size_t n = size_t(f.width) * size_t(f.height);
