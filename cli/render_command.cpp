@@ -139,7 +139,7 @@ CLI::App* AddRenderCommand(CLI::App& app, RenderArgs& a) {
   c->add_option("--highlight-color", a.highlightColor, "Highlight halo colour RRGGBB (sRGB hex)")->capture_default_str();
   c->add_option("--highlight-strength", a.highlightStrength, "Peak opacity of the highlight halo")->capture_default_str()->check(CLI::Range(0.0, 1.0));
   c->add_option("--highlight-trail", a.highlightTrail, "Temporal halo: the highlight leaves a wake lasting this many ps of simulation time (needs --trajectory; 1 ps per frame when the trajectory has no time step)")->check(CLI::PositiveNumber);
-  c->add_option("--contours", a.contours, "Contour lines around atoms and bonds, WIDTH Å (Tarini §5.1)")->expected(0, 1)->default_str("0.3")->check(CLI::Range(0.0, 100.0));
+  c->add_option("--contours", a.contours, "Contour lines around atoms and bonds, WIDTH Å (Tarini §5.1); off unless given, the value shown when given alone")->expected(0, 1)->default_str("0.3")->check(CLI::Range(0.0, 100.0));
   c->add_flag("--contour-depth-aware", a.contourDepthAware, "Thin contour lines where the depth step behind them is small");
   c->add_option("--contour-color", a.contourColor, "Contour line colour RRGGBB")->capture_default_str();
   c->add_option("--near-clip", a.nearClip, "Cut the molecule at this distance (Å) from the eye, capping cut atoms (Tarini §5.3)")->check(CLI::PositiveNumber);
@@ -155,7 +155,7 @@ CLI::App* AddRenderCommand(CLI::App& app, RenderArgs& a) {
   c->add_option("--halo-strength", a.haloStrength, "Opacity of one halo over a full depth gap")->capture_default_str();
   c->add_option("--halo-max-gap", a.haloMaxGap, "Depth gap (Å) behind a halo that makes it fully dark")->capture_default_str();
   c->add_option("--halo-color", a.haloColor, "Halo colour RRGGBB (000000 darkens, ffffff lightens)")->capture_default_str();
-  c->add_option("--depth-cue", a.depthCue, "Fade toward the fog colour with depth, STRENGTH at the back of the molecule")->expected(0, 1)->default_str("0.5")->check(CLI::Range(0.0, 1.0));
+  c->add_option("--depth-cue", a.depthCue, "Fade toward the fog colour with depth, STRENGTH at the back of the molecule; off unless given, the value shown when given alone")->expected(0, 1)->default_str("0.5")->check(CLI::Range(0.0, 1.0));
   c->add_option("--fog-color", a.fogColor, "Depth-cue colour RRGGBB (default: the background)");
   c->add_option("--backend", a.backend, "cpu | gl (the OpenGL 4.5 mirror through EGL, surfaceless)")
       ->capture_default_str()->check(CLI::IsMember({"cpu", "gl"}));
