@@ -66,21 +66,17 @@ void SphereTexelsImpl(const float* qx, const float* qy, const float* qh, size_t 
       rs[j] = s.r[k] * views[j].scale;
     }
     float* a = acc + k * n;
+    // Texels i.. (one vector, or one lane at the ragged end): the pairs in a fixed order.
+    const auto accumulate = [&](auto dd, size_t i) {
+      auto sum = hn::LoadU(dd, a + i);
+      for (int j = 0; j < pairs; ++j)
+        sum = hn::Add(sum, SphereWeightT(dd, qx + size_t(j) * n, qy + size_t(j) * n, qh + size_t(j) * n, cx[j],
+                                         cy[j], ch[j], rs[j], s.r[k], views[j].maps, maxCoord, size, bias, i));
+      hn::StoreU(sum, dd, a + i);
+    };
     size_t i = 0;
-    for (; i + N <= n; i += N) {
-      auto sum = hn::LoadU(d, a + i);
-      for (int j = 0; j < pairs; ++j)
-        sum = hn::Add(sum, SphereWeightT(d, qx + size_t(j) * n, qy + size_t(j) * n, qh + size_t(j) * n, cx[j],
-                                         cy[j], ch[j], rs[j], s.r[k], views[j].maps, maxCoord, size, bias, i));
-      hn::StoreU(sum, d, a + i);
-    }
-    for (; i < n; ++i) {
-      auto sum = hn::LoadU(d1, a + i);
-      for (int j = 0; j < pairs; ++j)
-        sum = hn::Add(sum, SphereWeightT(d1, qx + size_t(j) * n, qy + size_t(j) * n, qh + size_t(j) * n, cx[j],
-                                         cy[j], ch[j], rs[j], s.r[k], views[j].maps, maxCoord, size, bias, i));
-      hn::StoreU(sum, d1, a + i);
-    }
+    for (; i + N <= n; i += N) accumulate(d, i);
+    for (; i < n; ++i) accumulate(d1, i);
   }
 }
 
@@ -99,27 +95,19 @@ void CylinderTexelsImpl(const float* cosA, const float* sinA, const float* axial
     for (int j = 0; j < pairs; ++j) w[j] = bake::MakeCylinderView(c, views[j], k);
     float* a = acc + k * n;
     float* m = norm + k * n;
+    const auto accumulate = [&](auto dd, size_t i) {
+      auto sum = hn::LoadU(dd, a + i), nsum = hn::LoadU(dd, m + i);
+      for (int j = 0; j < pairs; ++j) {
+        hn::Vec<decltype(dd)> absNd;
+        sum = hn::Add(sum, CylinderWeightT(dd, cosA, sinA, axial, w[j], views[j].maps, maxCoord, size, bias, i, absNd));
+        nsum = hn::Add(nsum, absNd);
+      }
+      hn::StoreU(sum, dd, a + i);
+      hn::StoreU(nsum, dd, m + i);
+    };
     size_t i = 0;
-    for (; i + N <= n; i += N) {
-      auto sum = hn::LoadU(d, a + i), nsum = hn::LoadU(d, m + i);
-      for (int j = 0; j < pairs; ++j) {
-        hn::Vec<decltype(d)> absNd;
-        sum = hn::Add(sum, CylinderWeightT(d, cosA, sinA, axial, w[j], views[j].maps, maxCoord, size, bias, i, absNd));
-        nsum = hn::Add(nsum, absNd);
-      }
-      hn::StoreU(sum, d, a + i);
-      hn::StoreU(nsum, d, m + i);
-    }
-    for (; i < n; ++i) {
-      auto sum = hn::LoadU(d1, a + i), nsum = hn::LoadU(d1, m + i);
-      for (int j = 0; j < pairs; ++j) {
-        hn::Vec<decltype(d1)> absNd;
-        sum = hn::Add(sum, CylinderWeightT(d1, cosA, sinA, axial, w[j], views[j].maps, maxCoord, size, bias, i, absNd));
-        nsum = hn::Add(nsum, absNd);
-      }
-      hn::StoreU(sum, d1, a + i);
-      hn::StoreU(nsum, d1, m + i);
-    }
+    for (; i + N <= n; i += N) accumulate(d, i);
+    for (; i < n; ++i) accumulate(d1, i);
   }
 }
 
