@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "effects/pass_list.h"
 #include "io/error.h"
 
 namespace softmol::cli {
@@ -18,6 +19,8 @@ void ProfileTrace::AddFrame(int index, double startMs, const effects::RenderedFr
   events_.back()["args"] = {{"index", index}};
   for (const effects::PassTiming& p : f.passes) {
     AddComplete(p.name, "pass", startMs + p.startMs, p.durationMs);
+    // What each pass read and wrote (the pass list's declarations), shown beside its bar.
+    events_.back()["args"] = {{"reads", effects::BufferNames(p.reads)}, {"writes", effects::BufferNames(p.writes)}};
     if (p.name == "gbuffer") {
       // The raster stages run one after another inside the G-buffer pass.
       double t = startMs + p.startMs;
@@ -39,6 +42,15 @@ void ProfileTrace::AddFrame(int index, double startMs, const effects::RenderedFr
                                {"fragments tested", s.fragmentsTested},
                                {"fragments kept", s.fragmentsKept},
                                {"tiles skipped by depth", s.tilesSkippedByDepth}}}});
+  if (f.shadowStats.covered > 0) {
+    // The PCF pre-test's saving (Sigg §4): samples it decided and map taps taken.
+    const effects::ShadowStats& sh = f.shadowStats;
+    events_.push_back({{"name", "shadow counters"}, {"ph", "C"}, {"pid", 1}, {"tid", 1},
+                       {"ts", startMs * 1000.0},
+                       {"args", {{"covered samples", sh.covered},
+                                 {"decided by the pre-test", sh.pretestDecided},
+                                 {"map taps", sh.tapsTaken}}}});
+  }
 }
 
 void ProfileTrace::Write(const std::string& path) const {

@@ -225,7 +225,8 @@ void RenderFrame(const raster::PrimitiveScene& scene, const raster::Camera& came
         break;
     }
     const Clock::time_point passEnd = Clock::now();
-    f.passes.push_back({std::move(name), MsBetween(t0, passStart), MsBetween(passStart, passEnd)});
+    f.passes.push_back({std::move(name), MsBetween(t0, passStart), MsBetween(passStart, passEnd), pass.reads,
+                        pass.writes});
     passStart = passEnd;
   }
   if (!o.color) f.rgba.clear();

@@ -78,6 +78,7 @@ struct RenderOptions {
 struct PassTiming {
   std::string name;
   double startMs = 0, durationMs = 0;  // from the start of the frame
+  uint64_t reads = 0, writes = 0;      // FrameBuffer bits (effects/pass_list.h)
 };
 
 // Output-resolution results, top row first (file order).

@@ -135,6 +135,29 @@ TEST(CliRender, ProfileListsFramesAndPasses) {
   EXPECT_EQ(counters, 3u);
 }
 
+TEST(CliRender, ProfileShowsWhatEachPassReadsAndWrites) {
+  const auto dir = ScratchDir("render_profile_effects");
+  const std::string trace = (dir / "trace.json").string();
+  const CommandResult r = RunSoftmol("render " + kPept + " -o '" + (dir / "p.png").string() +
+                                         "' --size 64x48 --shadows --shadow-map 256 --profile '" + trace + "'",
+                                     dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto j = nlohmann::json::parse(Slurp(trace));
+  std::vector<std::string> passes;
+  bool shadowCounters = false;
+  for (const auto& e : j["traceEvents"]) {
+    if (e["name"] == "shadow counters") shadowCounters = e["args"]["covered samples"].get<uint64_t>() > 0;
+    if (e.value("cat", "") != "pass") continue;
+    passes.push_back(e["name"]);
+    if (e["name"] == "shadows") {
+      EXPECT_EQ(e["args"]["reads"], "depth, normal, shadow map");
+      EXPECT_EQ(e["args"]["writes"], "shadow");
+    }
+  }
+  EXPECT_EQ(passes, (std::vector<std::string>{"gbuffer", "shadow map", "shadows", "shading"}));
+  EXPECT_TRUE(shadowCounters);
+}
+
 TEST(CliRender, ConeAoWritesAnAoChannelAndDarkensCrevices) {
   const auto dir = ScratchDir("render_ao");
   const std::string out = (dir / "il2.exr").string();
