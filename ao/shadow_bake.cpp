@@ -119,7 +119,6 @@ HWY_AFTER_NAMESPACE();
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <map>
 #include <mutex>
@@ -132,6 +131,7 @@ HWY_AFTER_NAMESPACE();
 #include "ao/shadow_bake.h"
 #include "ao/surface_maps.h"
 #include "common/check.h"
+#include "common/timer.h"
 
 namespace softmol::ao {
 
@@ -143,16 +143,10 @@ using bake::CylinderView;
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
 // "Nothing covers this texel": finite sentinels (no Inf in any buffer), beyond any height.
 constexpr float kEmptyTop = -3.0e38f;
 constexpr float kEmptyBottom = 3.0e38f;
 constexpr int32_t kBandRows = 16;
-
-double Ms(Clock::time_point a, Clock::time_point b) {
-  return std::chrono::duration<double, std::milli>(b - a).count();
-}
 
 
 // ---- Scalar twins (the paper's arithmetic, one texel at a time) ---------------------------
@@ -538,7 +532,7 @@ AoAtlas BakeAo(const raster::PrimitiveScene& scene, const BakeOptions& o, BakeSt
   Projected p;
   double mapMs = 0, texelMs = 0;
   const float bias = o.depthBias;
-  const double setupMs = Ms(start, Clock::now());
+  const double setupMs = MsBetween(start, Clock::now());
   for (int first = 0; first < pairs; first += batch) {
     const int count = std::min(batch, pairs - first);
     const Clock::time_point t0 = Clock::now();
@@ -581,8 +575,8 @@ AoAtlas BakeAo(const raster::PrimitiveScene& scene, const BakeOptions& o, BakeSt
                              size, bias, cAcc.data(), cNorm.data());
     });
     const Clock::time_point t2 = Clock::now();
-    mapMs += Ms(t0, t1);
-    texelMs += Ms(t1, t2);
+    mapMs += MsBetween(t0, t1);
+    texelMs += MsBetween(t1, t2);
     if (progress) progress(double(first + count) / double(pairs));
   }
 
@@ -613,7 +607,7 @@ AoAtlas BakeAo(const raster::PrimitiveScene& scene, const BakeOptions& o, BakeSt
     stats->setupMs = setupMs;
     stats->shadowMapMs = mapMs;
     stats->texelMs = texelMs;
-    stats->totalMs = Ms(start, Clock::now());
+    stats->totalMs = MsBetween(start, Clock::now());
     stats->pairs = pairs;
     stats->texels = nS * sOwned.size() + nC * cOwned.size();
     stats->mapSize = size;

@@ -72,9 +72,7 @@ void ConeFrame(benchmark::State& state, int molecule, int style) {
   softmol::effects::RenderOptions o;
   o.ao = softmol::effects::AoMode::kCone;
   o.cone.cones = int(state.range(3));
-  o.shading.ambient = 0.75f;
-  o.shading.diffuse = 0.40f;
-  o.shading.specular = 0.25f;
+  o.shading = softmol::effects::AoShading();
   RunFrames(state, scene, cam, o, true);
 }
 

@@ -9,7 +9,6 @@
 // Run: trajectory_render_bench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
-#include <chrono>
 #include <cstdio>
 #include <map>
 #include <string>
@@ -17,6 +16,7 @@
 
 #include <tbb/global_control.h>
 
+#include "common/timer.h"
 #include "effects/frame_renderer.h"
 #include "io/bonds.h"
 #include "io/image_io.h"
@@ -29,11 +29,6 @@
 namespace {
 
 using namespace softmol;
-using Clock = std::chrono::steady_clock;
-
-double Ms(Clock::time_point a, Clock::time_point b) {
-  return std::chrono::duration<double, std::milli>(b - a).count();
-}
 
 const char* kTopology = SOFTMOL_DATA_DIR "/md.pdb";
 const char* kTrajectory = SOFTMOL_DATA_DIR "/md.xtc";
@@ -53,9 +48,7 @@ const io::Molecule& Topology(bool withBonds) {
 effects::RenderOptions ConeOptions(const io::Molecule& mol, bool highlight, bool trail) {
   effects::RenderOptions o;
   o.ao = effects::AoMode::kCone;
-  o.shading.ambient = 0.75f;
-  o.shading.diffuse = 0.40f;
-  o.shading.specular = 0.25f;
+  o.shading = effects::AoShading();
   if (highlight) {
     o.highlight.spheres = io::Evaluate(io::ParseSelection("ion"), mol);
     o.highlight.trail = trail ? 5.0 : 0.0;
@@ -110,8 +103,8 @@ void BM_TrajectoryFrame(benchmark::State& state) {
     o.highlight.frameDelta = firstFrame ? 0.0 : stepPs;
     firstFrame = false;
     effects::RenderFrame(moving, view, o, frame, &resources);
-    ms["read"] += Ms(t0, t1);
-    ms["representation"] += Ms(t1, t2);
+    ms["read"] += MsBetween(t0, t1);
+    ms["representation"] += MsBetween(t1, t2);
     ms["render"] += frame.totalMs;
     for (const auto& p : frame.passes) ms[p.name] += p.durationMs;
     ++frames;
@@ -146,7 +139,7 @@ void BM_TrajectoryPng(benchmark::State& state) {
   for (auto _ : state) {
     const Clock::time_point t0 = Clock::now();
     const std::vector<uint8_t> px = effects::EncodeSrgb8(frame, false);
-    encodeMs += Ms(t0, Clock::now());
+    encodeMs += MsBetween(t0, Clock::now());
     io::WritePng(path, frame.width, frame.height, 3, px);
   }
   std::remove(path.c_str());

@@ -2,7 +2,6 @@
 // representation and bakes the Tarini et al. AO atlas (ao/shadow_bake.h), written as a
 // one-channel EXR ("AO", file pixel (x, y) = atlas texel (x, y)) for inspection.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -18,6 +17,7 @@
 #include "cli/bake_options.h"
 #include "cli/commands.h"
 #include "cli/load_molecule.h"
+#include "common/timer.h"
 #include "io/error.h"
 #include "io/image_io.h"
 #include "raster/representation.h"
@@ -25,7 +25,6 @@
 namespace softmol::cli {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 
 raster::Style ParseBakeStyle(const std::string& s) {
   if (s == "spacefill") return raster::Style::kSpacefill;
@@ -36,15 +35,23 @@ raster::Style ParseBakeStyle(const std::string& s) {
 
 }  // namespace
 
-void AddBakeCommand(CLI::App& app, BakeArgs& a) {
-  CLI::App* c = app.add_subcommand("bake", "Bake the ambient-occlusion atlas (Tarini et al.) to EXR");
+BakeCommand::BakeCommand(CLI::App& app) : params_(BakeParams()) {
+  CLI::App* c = command_ = app.add_subcommand("bake", "Bake the ambient-occlusion atlas (Tarini et al.) to EXR");
+  BakeArgs& a = args_;
   c->add_option("MOLECULE", a.molecule, "PDB or mmCIF file (plain or .gz)")->required();
   c->add_option("-o,--output", a.output, "Output atlas, .exr (one float channel \"AO\")")->required();
   c->add_option("--style", a.style, "spacefill | balls | licorice")->capture_default_str();
   c->add_option("--assembly", a.assembly, "Build biological assembly ID");
-  AddBakeFlags(*c, a.bake);
+  params_.AddTo(*c);
   c->add_option("--threads", a.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
   c->add_flag("-q,--quiet", a.quiet, "Print nothing on success");
+}
+
+BakeArgs BakeCommand::Args() {
+  BakeArgs a = args_;
+  params_.inputs().CollectFlags();
+  params_.Apply(a.bake);
+  return a;
 }
 
 int RunBake(const BakeArgs& a) {
@@ -54,7 +61,6 @@ int RunBake(const BakeArgs& a) {
     for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
     if (ext != ".exr") throw io::InputError({"-o"}, "the atlas is written as .exr, got '" + a.output + "'");
   }
-  ValidateBakeFlags(a.bake);
   raster::RepresentationOptions rep;
   rep.style = ParseBakeStyle(a.style);
   std::unique_ptr<tbb::global_control> threads;
@@ -65,7 +71,7 @@ int RunBake(const BakeArgs& a) {
   LoadedMolecule loaded = LoadMolecule(a.molecule, a.assembly, /*trajectory=*/"",
                                        /*withBonds=*/rep.style != raster::Style::kSpacefill);
   const raster::PrimitiveScene scene = raster::BuildRepresentation(loaded.molecule, rep);
-  const double loadMs = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+  const double loadMs = MsSince(start);
   const ao::BakeOptions o = MakeBakeOptions(a.bake, scene);
 
   const bool bar = !a.quiet && isatty(STDERR_FILENO);
@@ -99,7 +105,7 @@ int RunBake(const BakeArgs& a) {
     std::printf("%s: %zu spheres, %zu cylinders (%zu ellipsoids not baked)\n", a.molecule.c_str(),
                 scene.spheres.size(), scene.cylinders.size(), scene.ellipsoids.size());
     std::printf("atlas %d² (%s patches %d, %d×%d cells), %d directions, shadow maps %d²\n",
-                atlas.layout.side, a.bake.sphereMap.c_str(), atlas.layout.patchSize, atlas.layout.columns,
+                atlas.layout.side, a.bake.sphereMap == ao::PatchKind::kCube ? "cube" : "octahedral", atlas.layout.patchSize, atlas.layout.columns,
                 atlas.layout.rows, 2 * stats.pairs, stats.mapSize);
     std::printf("load %.1f ms, bake setup %.1f ms, shadow maps %.1f ms, texels %.1f ms, bake total %.1f ms -> %s\n",
                 loadMs, stats.setupMs, stats.shadowMapMs, stats.texelMs, stats.totalMs, a.output.c_str());

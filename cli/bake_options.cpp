@@ -18,40 +18,46 @@ const char* OptionOf(const std::string& message) {
 
 }  // namespace
 
-void AddBakeFlags(CLI::App& c, BakeFlags& f) {
-  c.add_option("--ao-directions", f.directions, "Baked AO: light directions, even (pairs d, -d), 2..16384")
-      ->capture_default_str();
-  c.add_option("--ao-patch", f.patch, "Baked AO: patch side in texels, >= 2 (default: the largest that fits the texture)");
-  c.add_option("--ao-texture", f.texture, "Baked AO: atlas side in texels, 2..32768 (default 1024, or just enough for --ao-patch)");
-  c.add_option("--ao-map", f.map, "Baked AO: side of each mid-surface shadow map, texels, 16..8192")->capture_default_str();
-  c.add_option("--ao-bias", f.bias, "Baked AO: shadow depth bias, Å, >= 0 (default 0.05)");
-  c.add_option("--ao-sphere-map", f.sphereMap, "Baked AO: octahedral | cube patches for atoms")->capture_default_str();
-}
-
-void ValidateBakeFlags(const BakeFlags& f) {
-  if (f.directions < 2 || f.directions > 16384 || f.directions % 2 != 0)
-    throw io::InputError({"--ao-directions"}, "must be even (directions come in pairs d, -d) and in [2, 16384], got " +
-                                                  std::to_string(f.directions));
-  if (f.patch != 0 && (f.patch < 2 || f.patch > 4096))
-    throw io::InputError({"--ao-patch"}, "must be in [2, 4096], got " + std::to_string(f.patch));
-  if (f.texture != 0 && (f.texture < 2 || f.texture > 32768))
-    throw io::InputError({"--ao-texture"}, "must be in [2, 32768], got " + std::to_string(f.texture));
-  if (f.map < 16 || f.map > 8192)
-    throw io::InputError({"--ao-map"}, "must be in [16, 8192], got " + std::to_string(f.map));
-  if (f.bias != -1.0 && !(f.bias >= 0.0 && f.bias <= 100.0))
-    throw io::InputError({"--ao-bias"}, "must be in [0, 100] Å");
-  if (f.sphereMap != "octahedral" && f.sphereMap != "cube")
-    throw io::InputError({"--ao-sphere-map"}, "unknown map '" + f.sphereMap + "' (octahedral, cube)");
+io::ParamTable<BakeFlags> BakeParams() {
+  using io::ChoiceParam, io::IntParam, io::RealParam;
+  io::ParamTable<BakeFlags> t = {
+      IntParam<BakeFlags>("ao-directions", [](auto& f) -> auto& { return f.directions; }, 2, 16384, "",
+                          "Baked AO: light directions, even (pairs d, -d)", "ao bake"),
+      IntParam<BakeFlags>("ao-patch", [](auto& f) -> auto& { return f.patch; }, 0, 4096, "texels",
+                          "Baked AO: patch side, >= 2 (0: the largest that fits the texture)", "ao bake"),
+      IntParam<BakeFlags>("ao-texture", [](auto& f) -> auto& { return f.texture; }, 0, 32768, "texels",
+                          "Baked AO: atlas side, >= 2 (0: 1024, or just enough for --ao-patch)", "ao bake"),
+      IntParam<BakeFlags>("ao-map", [](auto& f) -> auto& { return f.map; }, 16, 8192, "texels",
+                          "Baked AO: side of each mid-surface shadow map", "ao bake"),
+      RealParam<BakeFlags>("ao-bias", [](auto& f) -> auto& { return f.bias; }, {0.0, 100.0}, "Å",
+                           "Baked AO: shadow depth bias", "ao bake"),
+      ChoiceParam<BakeFlags>("ao-sphere-map", [](auto& f) -> auto& { return f.sphereMap; },
+                             std::vector<std::pair<std::string, ao::PatchKind>>{{"octahedral", ao::PatchKind::kOctahedral},
+                                                                                {"cube", ao::PatchKind::kCube}},
+                             "Baked AO: patches for atoms", "ao bake"),
+  };
+  // Rules one range cannot say, checked as the value is set so that the error names it.
+  t[0].set = [set = t[0].set](BakeFlags& f, std::string_view text, const io::SourceLocation& where) {
+    set(f, text, where);
+    if (f.directions % 2 != 0)
+      throw io::InputError(where, "must be even (directions come in pairs d, -d), got " + std::to_string(f.directions));
+  };
+  for (size_t i : {size_t(1), size_t(2)}) {
+    t[i].set = [set = t[i].set, i](BakeFlags& f, std::string_view text, const io::SourceLocation& where) {
+      set(f, text, where);
+      if ((i == 1 ? f.patch : f.texture) == 1) throw io::InputError(where, "must be 0 (automatic) or at least 2");
+    };
+  }
+  return t;
 }
 
 ao::BakeOptions MakeBakeOptions(const BakeFlags& f, const raster::PrimitiveScene& scene) {
-  ValidateBakeFlags(f);
   ao::BakeOptions o;
   o.directions = f.directions;
   o.shadowMapSize = f.map;
-  if (f.bias >= 0) o.depthBias = float(f.bias);
+  o.depthBias = f.bias;
   o.atlas.patchSize = f.patch;
-  o.atlas.sphereMap = f.sphereMap == "cube" ? ao::PatchKind::kCube : ao::PatchKind::kOctahedral;
+  o.atlas.sphereMap = f.sphereMap;
   if (f.texture > 0) {
     o.atlas.textureSide = f.texture;
   } else if (f.patch > 0) {

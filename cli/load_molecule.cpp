@@ -1,9 +1,9 @@
 #include "cli/load_molecule.h"
 
-#include <chrono>
 #include <cctype>
 #include <filesystem>
 
+#include "common/timer.h"
 #include "io/bonds.h"
 #include "io/error.h"
 #include "io/structure_reader.h"
@@ -12,11 +12,6 @@
 
 namespace softmol::cli {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double Ms(Clock::time_point a) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - a).count();
-}
 
 bool IsPsf(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
@@ -33,7 +28,7 @@ LoadedMolecule LoadMolecule(const std::string& path, const std::string& assembly
   if (IsPsf(path)) {
     if (!assembly.empty()) throw io::InputError({"--assembly"}, "a PSF topology defines no assemblies");
     out.molecule = io::ReadPsfTopology(path);
-    out.steps.push_back({"read topology", Ms(t)});
+    out.steps.push_back({"read topology", MsSince(t)});
     if (trajectory.empty())
       throw io::InputError({path}, "a PSF topology has no coordinates: give --trajectory FILE");
     t = Clock::now();
@@ -41,18 +36,18 @@ LoadedMolecule LoadMolecule(const std::string& path, const std::string& assembly
     io::TrajectoryFrame frame;
     if (!reader->Next(frame)) throw io::InputError({trajectory}, "the trajectory has no frames");
     io::ApplyFrame(frame, out.molecule);
-    out.steps.push_back({"read first frame", Ms(t)});
+    out.steps.push_back({"read first frame", MsSince(t)});
   } else {
     io::ReadOptions options;
     options.assembly = assembly;
     out.molecule = io::ReadMolecule(path, options);
-    out.steps.push_back({assembly.empty() ? "read" : "read + assembly " + assembly, Ms(t)});
+    out.steps.push_back({assembly.empty() ? "read" : "read + assembly " + assembly, MsSince(t)});
   }
   out.recordBonds = out.molecule.bondCount();
   if (withBonds) {
     t = Clock::now();
     out.distanceBonds = io::ComputeDistanceBonds(out.molecule);
-    out.steps.push_back({"bonds", Ms(t)});
+    out.steps.push_back({"bonds", MsSince(t)});
   }
   return out;
 }

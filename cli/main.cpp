@@ -8,7 +8,6 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/commands.h"
-#include "cli/scene_options.h"
 #include "io/error.h"
 
 int main(int argc, char** argv) {
@@ -16,11 +15,9 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "softmol 0.1.0");
   softmol::cli::InfoArgs info;
-  softmol::cli::RenderArgs render;
   softmol::cli::AddInfoCommand(app, info);
-  CLI::App* renderCommand = softmol::cli::AddRenderCommand(app, render);
-  softmol::cli::BakeArgs bake;
-  softmol::cli::AddBakeCommand(app, bake);
+  softmol::cli::RenderCommand render(app);
+  softmol::cli::BakeCommand bake(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -28,11 +25,8 @@ int main(int argc, char** argv) {
   }
   try {
     if (app.got_subcommand("info")) return softmol::cli::RunInfo(info);
-    if (app.got_subcommand("render")) {
-      if (!render.scene.empty()) softmol::cli::ApplySceneFile(*renderCommand, render.scene);
-      return softmol::cli::RunRender(render);
-    }
-    if (app.got_subcommand("bake")) return softmol::cli::RunBake(bake);
+    if (app.got_subcommand("render")) return softmol::cli::RunRender(render.Args());
+    if (app.got_subcommand("bake")) return softmol::cli::RunBake(bake.Args());
     return 1;
   } catch (const softmol::io::InputError& e) {
     std::fprintf(stderr, "softmol: %s\n", e.what());

@@ -62,16 +62,6 @@ std::vector<double> ParseNumbers(const std::string& text, size_t count, const st
   return v;
 }
 
-uint32_t ParseHexColor(const std::string& text, const std::string& option) {
-  std::string s = Trim(text);
-  if (!s.empty() && s[0] == '#') s = s.substr(1);
-  uint32_t v = 0;
-  auto r = std::from_chars(s.data(), s.data() + s.size(), v, 16);
-  if (s.size() != 6 || r.ec != std::errc() || r.ptr != s.data() + s.size())
-    throw io::InputError({option}, "expected a colour as RRGGBB hex, e.g. ffffff, got '" + text + "'");
-  return v;
-}
-
 std::vector<size_t> ParseFrameRange(const std::string& text, size_t frameCount, const std::string& option) {
   if (frameCount == 0) throw io::InputError({option}, "the trajectory has no frames");
   std::vector<std::string> parts;

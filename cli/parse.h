@@ -1,4 +1,4 @@
-// cli/parse.h — parsers for option values (sizes, lists of numbers, colours). Each throws
+// cli/parse.h — parsers for option values (sizes, lists of numbers, frame ranges). Each throws
 // io::InputError naming the option and quoting the bad text.
 #pragma once
 
@@ -17,9 +17,6 @@ ImageSize ParseSize(const std::string& text, const std::string& option);
 
 // "1,2.5,-3" -> exactly `count` finite numbers.
 std::vector<double> ParseNumbers(const std::string& text, size_t count, const std::string& option);
-
-// "ffffff" or "#ffffff" -> 0xRRGGBB.
-uint32_t ParseHexColor(const std::string& text, const std::string& option);
 
 // "A:B[:STEP]" (0-based, inclusive; A or B may be left out: "5:", ":20", "::10") -> the frame
 // indices, checked against `frameCount`.

@@ -2,7 +2,6 @@
 // builds the representation, frames the camera, renders through effects::RenderFrame and
 // writes the image (and AOVs), optionally timing every pass into a Chrome trace.
 #include <charconv>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -19,8 +18,10 @@
 #include "cli/load_molecule.h"
 #include "cli/parse.h"
 #include "cli/profile_trace.h"
+#include "common/timer.h"
 #include "effects/color.h"
 #include "effects/frame_renderer.h"
+#include "effects/pass_list.h"
 #include "io/error.h"
 #include "io/image_io.h"
 #include "io/selection.h"
@@ -35,16 +36,15 @@
 namespace softmol::cli {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 
 enum class OutputKind { kPng, kExr };
 
-OutputKind OutputKindOf(const std::string& path) {
+OutputKind OutputKindOf(const std::string& path, const io::SourceLocation& where = {"-o"}) {
   std::string ext = std::filesystem::path(path).extension().string();
   for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
   if (ext == ".png") return OutputKind::kPng;
   if (ext == ".exr") return OutputKind::kExr;
-  throw io::InputError({"-o"}, "output must end in .png or .exr, got '" + path + "'");
+  throw io::InputError(where, "output must end in .png or .exr, got '" + path + "'");
 }
 
 // NAME.png -> NAME.aov.exr, beside it.
@@ -61,16 +61,72 @@ raster::Style ParseStyle(const std::string& s) {
   throw io::InputError({"--style"}, "unknown style '" + s + "' (spacefill, balls, licorice, ellipsoids)");
 }
 
-uint32_t ParseAovs(const std::string& list) {
-  uint32_t aovs = 0;
-  for (const std::string& name : SplitList(list)) {
-    if (name == "depth") aovs |= effects::kAovDepth;
-    else if (name == "normal") aovs |= effects::kAovNormal;
-    else if (name == "id") aovs |= effects::kAovId;
-    else if (name == "ao") aovs |= effects::kAovAo;
-    else throw io::InputError({"--aov"}, "unknown AOV '" + name + "' (depth, normal, id, ao)");
+// The options `softmol render` itself reads (files, framing, the job).
+io::ParamTable<RenderArgs> JobParams() {
+  using io::ChoiceParam, io::IntParam, io::RealParam, io::SwitchParam, io::TextParam;
+  const auto numbers = [](size_t count) {
+    return [count](std::string_view text, const io::SourceLocation& where) {
+      (void)ParseNumbers(std::string(text), count, where.ToString());
+    };
+  };
+  io::ParamTable<RenderArgs> t = {
+      TextParam<RenderArgs>("output", [](auto& a) -> auto& { return a.output; }, "FILE.png|FILE.exr",
+                            "Output image: .png (sRGB 8-bit) or .exr (linear float + AOVs)", "output",
+                            [](std::string_view text, const io::SourceLocation& where) {
+                              (void)OutputKindOf(std::string(text), where);
+                            }),
+      TextParam<RenderArgs>("size", [](auto& a) -> auto& { return a.size; }, "WIDTHxHEIGHT", "Image size", "output",
+                            [](std::string_view text, const io::SourceLocation& where) {
+                              (void)ParseSize(std::string(text), where.ToString());
+                            }),
+      ChoiceParam<RenderArgs>("style", [](auto& a) -> auto& { return a.style; },
+                              std::vector<std::pair<std::string, std::string>>{{"spacefill", "spacefill"},
+                                                                               {"balls", "balls"},
+                                                                               {"licorice", "licorice"},
+                                                                               {"ellipsoids", "ellipsoids"}},
+                              "Representation", "molecule"),
+      TextParam<RenderArgs>("assembly", [](auto& a) -> auto& { return a.assembly; }, "ID", "Build biological assembly ID",
+                            "molecule"),
+      TextParam<RenderArgs>("trajectory", [](auto& a) -> auto& { return a.trajectory; }, "FILE",
+                            "Render frames of this trajectory (.xtc, .dcd, multi-model .pdb/.cif) on the topology MOLECULE",
+                            "molecule"),
+      TextParam<RenderArgs>("frames", [](auto& a) -> auto& { return a.frames; }, "A:B[:STEP]",
+                            "Trajectory frames (0-based, inclusive; default all); -o needs %d or %05d for several",
+                            "molecule"),
+      TextParam<RenderArgs>("highlight", [](auto& a) -> auto& { return a.highlight; }, "SELECTION",
+                            "Surround this selection (e.g. ligand, \"resn RET\", chain B) with an object-space halo",
+                            "halos"),
+      TextParam<RenderArgs>("camera", [](auto& a) -> auto& { return a.camera; }, "EX,EY,EZ,TX,TY,TZ,UX,UY,UZ",
+                            "Explicit camera (eye, target, up; Å, world)", "camera", numbers(9)),
+      RealParam<RenderArgs>("fov", [](auto& a) -> auto& { return a.fov; }, {0.1, 179.0}, "degrees",
+                            "Vertical field of view", "camera"),
+      RealParam<RenderArgs>("ortho", [](auto& a) -> auto& { return a.ortho; }, {0.0, 1e9}, "Å",
+                            "Orthographic projection with this view height; 0 = perspective", "camera"),
+      TextParam<RenderArgs>("rotate", [](auto& a) -> auto& { return a.rotate; }, "X,Y,Z",
+                            "Rotate the molecule about its centre by X,Y,Z degrees", "camera", numbers(3)),
+      RealParam<RenderArgs>("zoom", [](auto& a) -> auto& { return a.zoom; }, {1e-3, 1e3}, "",
+                            "Zoom factor (> 1 moves closer)", "camera"),
+      RealParam<RenderArgs>("near", [](auto& a) -> auto& { return a.nearPlane; }, {0.0, 1e9}, "Å",
+                            "Near plane distance; 0 = fitted to the scene", "camera"),
+      RealParam<RenderArgs>("far", [](auto& a) -> auto& { return a.farPlane; }, {0.0, 1e9}, "Å",
+                            "Far plane distance; 0 = fitted to the scene", "camera"),
+      ChoiceParam<RenderArgs>("backend", [](auto& a) -> auto& { return a.backend; },
+                              std::vector<std::pair<std::string, std::string>>{{"cpu", "cpu"}, {"gl", "gl"}},
+                              "cpu, or gl: the OpenGL 4.5 mirror through EGL, surfaceless", "job"),
+      IntParam<RenderArgs>("threads", [](auto& a) -> auto& { return a.threads; }, 0, 1024, "",
+                           "Worker threads (0: all cores)", "job"),
+      IntParam<RenderArgs>("repeat", [](auto& a) -> auto& { return a.repeat; }, 1, 100000, "",
+                           "Render the frame N times (steady-state timings)", "job"),
+      TextParam<RenderArgs>("profile", [](auto& a) -> auto& { return a.profile; }, "FILE.json",
+                            "Write per-pass timings as Chrome trace-event JSON (open in Perfetto)", "job"),
+      SwitchParam<RenderArgs>("quiet", [](auto& a) -> auto& { return a.quiet; }, "Print nothing on success", "job"),
+  };
+  for (io::Param<RenderArgs>& p : t) {
+    if (p.name == "output") p.shortName = 'o';  // relative to the working directory, as -o
+    if (p.name == "quiet") p.shortName = 'q';
+    if (p.name == "trajectory") p.isPath = true;
   }
-  return aovs;
+  return t;
 }
 
 io::ImageFile ToExr(const effects::RenderedFrame& f, bool withColor) {
@@ -97,101 +153,83 @@ io::ImageFile ToExr(const effects::RenderedFrame& f, bool withColor) {
   return img;
 }
 
-glm::vec3 LinearColor(const std::string& hex, const char* option) {
-  const effects::LinearRgb c = effects::UnpackSrgb(ParseHexColor(hex, option));
-  return glm::vec3(c.r, c.g, c.b);
+}  // namespace
+
+io::ParamTable<RenderArgs> RenderParams() {
+  io::ParamTable<RenderArgs> t = JobParams();
+  io::Append(t, io::Lift<RenderArgs>(BakeParams(), [](auto& a) -> auto& { return a.bake; }));
+  io::Append(t, io::Lift<RenderArgs>(effects::RenderParams(), [](auto& a) -> auto& { return a.options; }));
+  return t;
 }
+
+RenderCommand::RenderCommand(CLI::App& app) : params_(RenderParams()) {
+  command_ = app.add_subcommand("render", "Render a molecule to PNG or EXR");
+  command_->add_option("MOLECULE", molecule_, "PDB or mmCIF file (plain or .gz), or a PSF topology with --trajectory (or the scene's \"molecule\")");
+  command_->add_option("--scene", scene_, "Scene file (JSON): any option below as {\"name\": value}; flags given here override it")
+      ->check(CLI::ExistingFile);
+  params_.AddTo(*command_);
+}
+
+RenderArgs RenderCommand::Args() {
+  RenderArgs a;
+  params_.inputs().CollectFlags();
+  a.molecule = molecule_;
+  a.scene = scene_;
+  if (!scene_.empty()) {
+    const std::string sceneMolecule = params_.inputs().ReadScene(scene_);
+    if (a.molecule.empty()) a.molecule = sceneMolecule;
+  }
+  params_.Apply(a);
+  effects::CheckRenderOptions(a.options);
+  return a;
+}
+
+namespace {
+
+// The options as the frame renderer takes them: what follows from the AO method and the scene
+// (the bake's atlas size, the highlighted spheres) is filled in by RunRender.
+effects::RenderOptions FrameOptionsOf(const RenderArgs& a) {
+  effects::RenderOptions ro = a.options;
+  if (ro.ao != effects::AoMode::kNone) ro.shading = effects::AoShading();
+  return ro;
+}
+
+// The first pass of the plan that the GL mirror does not run, as the option that asked for it.
+#if SOFTMOL_HAVE_GL
+void RequireMirrored(const effects::RenderOptions& ro) {
+  for (const effects::PlannedPass& p : effects::PlanPasses(ro)) {
+    if (gl::Mirrors(p.id)) continue;
+    const std::string flag = effects::Pass(p.id).enabledBy;
+    throw io::InputError({flag.substr(0, flag.find(' '))}, "the pass '" + std::string(p.name) + "' (" + flag +
+                                                               ") is not mirrored in the GL backend yet (use --backend cpu)");
+  }
+}
+#endif
 
 }  // namespace
 
-CLI::App* AddRenderCommand(CLI::App& app, RenderArgs& a) {
-  CLI::App* c = app.add_subcommand("render", "Render a molecule to PNG or EXR");
-  c->add_option("MOLECULE", a.molecule, "PDB or mmCIF file (plain or .gz), or a PSF topology with --trajectory (or the scene's \"molecule\")");
-  c->add_option("--scene", a.scene, "Scene file (JSON): any option below as {\"name\": value}; flags given here override it")->check(CLI::ExistingFile);
-  c->add_option("-o,--output", a.output, "Output image: .png (sRGB 8-bit) or .exr (linear float + AOVs)")->capture_default_str();
-  c->add_option("--size", a.size, "Image size WIDTHxHEIGHT")->capture_default_str();
-  c->add_option("--style", a.style, "spacefill | balls | licorice | ellipsoids")->capture_default_str();
-  c->add_option("--assembly", a.assembly, "Build biological assembly ID");
-  c->add_option("--camera", a.camera, "Explicit camera EX,EY,EZ,TX,TY,TZ,UX,UY,UZ (eye, target, up; Å, world)");
-  c->add_option("--fov", a.fov, "Vertical field of view, degrees")->capture_default_str()->check(CLI::Range(0.1, 179.0));
-  c->add_option("--ortho", a.ortho, "Orthographic projection with this view height (Å)")->check(CLI::PositiveNumber);
-  c->add_option("--rotate", a.rotate, "Rotate the molecule about its centre by X,Y,Z degrees");
-  c->add_option("--zoom", a.zoom, "Zoom factor (> 1 moves closer)")->capture_default_str()->check(CLI::Range(1e-3, 1e3));
-  c->add_option("--near", a.nearPlane, "Near plane distance (Å); default fitted to the scene")->check(CLI::PositiveNumber);
-  c->add_option("--far", a.farPlane, "Far plane distance (Å); default fitted to the scene")->check(CLI::PositiveNumber);
-  c->add_option("--ssaa", a.ssaa, "Supersampling: N×N samples per pixel")->capture_default_str()->check(CLI::Range(1, 4));
-  c->add_option("--background", a.background, "Background colour RRGGBB (sRGB hex)")->capture_default_str();
-  c->add_flag("--transparent", a.transparent, "Transparent background (alpha 0)");
-  c->add_option("--aov", a.aov, "Extra outputs: depth,normal,id,ao (EXR channels Z, N.x N.y N.z, id, AO)");
-  c->add_option("--ao", a.ao, "Ambient occlusion: none, baked (shadow maps into per-atom patches, once per structure), cone (occupancy pyramid, per frame) or reference (ray traced)")
-      ->capture_default_str()->check(CLI::IsMember({"none", "baked", "cone", "reference"}));
-  AddBakeFlags(*c, a.bake);
-  c->add_option("--cones", a.cones, "Cones per pixel for --ao cone")->capture_default_str()->check(CLI::IsMember({3, 5, 9}));
-  c->add_option("--ao-rays", a.aoRays, "Rays per pixel for --ao reference")->capture_default_str()->check(CLI::Range(1, 65536));
-  c->add_option("--ao-grid", a.aoGrid, "Finest occupancy grid resolution for --ao cone")->capture_default_str()->check(CLI::IsMember({32, 64, 128, 256}));
-  c->add_option("--threads", a.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
-  c->add_option("--profile", a.profile, "Write per-pass timings as Chrome trace-event JSON (open in Perfetto)");
-  c->add_option("--repeat", a.repeat, "Render the frame N times (steady-state timings)")->capture_default_str()->check(CLI::Range(1, 100000));
-  c->add_option("--tile-size", a.tileSize, "Raster tile size in pixels")->capture_default_str()->check(CLI::IsMember({8, 16, 32, 64, 128}));
-  c->add_option("--trajectory", a.trajectory, "Render frames of this trajectory (.xtc, .dcd, multi-model .pdb/.cif) on the topology MOLECULE");
-  c->add_option("--frames", a.frames, "Frames A:B[:STEP] (0-based, inclusive; default all); -o needs %d or %05d for several");
-  c->add_option("--highlight", a.highlight, "Surround this selection (e.g. ligand, \"resn RET\", chain B) with an object-space halo");
-  c->add_option("--highlight-color", a.highlightColor, "Highlight halo colour RRGGBB (sRGB hex)")->capture_default_str();
-  c->add_option("--highlight-strength", a.highlightStrength, "Peak opacity of the highlight halo")->capture_default_str()->check(CLI::Range(0.0, 1.0));
-  c->add_option("--highlight-trail", a.highlightTrail, "Temporal halo: the highlight leaves a wake lasting this many ps of simulation time (needs --trajectory; 1 ps per frame when the trajectory has no time step)")->check(CLI::PositiveNumber);
-  c->add_option("--contours", a.contours, "Contour lines around atoms and bonds, WIDTH Å (Tarini §5.1); off unless given, the value shown when given alone")->expected(0, 1)->default_str("0.3")->check(CLI::Range(0.0, 100.0));
-  c->add_flag("--contour-depth-aware", a.contourDepthAware, "Thin contour lines where the depth step behind them is small");
-  c->add_option("--contour-color", a.contourColor, "Contour line colour RRGGBB")->capture_default_str();
-  c->add_option("--near-clip", a.nearClip, "Cut the molecule at this distance (Å) from the eye, capping cut atoms (Tarini §5.3)")->check(CLI::PositiveNumber);
-  c->add_flag("--shadows", a.shadows, "Soft shadows: shadow map + percentage-closer filtering (Sigg §4)");
-  c->add_option("--shadow-map", a.shadowMap, "Shadow map side in texels")->capture_default_str()->check(CLI::Range(64, 8192));
-  c->add_option("--pcf-samples", a.pcfSamples, "PCF taps per sample")->capture_default_str()->check(CLI::Range(1, 256));
-  c->add_option("--pcf-pretest", a.pcfPretest, "Taps of the PCF pre-test (0: off)")->capture_default_str()->check(CLI::Range(0, 256));
-  c->add_option("--shadow-softness", a.shadowSoftness, "PCF filter radius, Å (penumbra width)")->capture_default_str()->check(CLI::Range(0.0, 100.0));
-  c->add_flag("--outlines", a.outlines, "Silhouette and crease lines: Sobel on depth and normals (Sigg §4)");
-  c->add_option("--outline-color", a.outlineColor, "Outline colour RRGGBB")->capture_default_str();
-  c->add_flag("--halos", a.halos, "Depth-aware halos around atoms (Tarini §5.2)");
-  c->add_option("--halo-size", a.haloSize, "Halo width beyond each atom, Å")->capture_default_str();
-  c->add_option("--halo-strength", a.haloStrength, "Opacity of one halo over a full depth gap")->capture_default_str();
-  c->add_option("--halo-max-gap", a.haloMaxGap, "Depth gap (Å) behind a halo that makes it fully dark")->capture_default_str();
-  c->add_option("--halo-color", a.haloColor, "Halo colour RRGGBB (000000 darkens, ffffff lightens)")->capture_default_str();
-  c->add_option("--depth-cue", a.depthCue, "Fade toward the fog colour with depth, STRENGTH at the back of the molecule; off unless given, the value shown when given alone")->expected(0, 1)->default_str("0.5")->check(CLI::Range(0.0, 1.0));
-  c->add_option("--fog-color", a.fogColor, "Depth-cue colour RRGGBB (default: the background)");
-  c->add_option("--backend", a.backend, "cpu | gl (the OpenGL 4.5 mirror through EGL, surfaceless)")
-      ->capture_default_str()->check(CLI::IsMember({"cpu", "gl"}));
-  c->add_flag("-q,--quiet", a.quiet, "Print nothing on success");
-  return c;
-}
-
 int RunRender(const RenderArgs& a) {
-  // Validate every option before any work, so a typo costs nothing and writes nothing.
+  // Every option was checked as it was parsed; what remains needs several of them together.
   if (a.molecule.empty())
     throw io::InputError({"MOLECULE"}, "no molecule: give a file, or \"molecule\" in the --scene file");
   const OutputKind kind = OutputKindOf(a.output);
   const ImageSize size = ParseSize(a.size, "--size");
   const raster::Style style = ParseStyle(a.style);
-  const uint32_t aovs = ParseAovs(a.aov);
+  effects::RenderOptions ro = FrameOptionsOf(a);
+  const uint32_t aovs = ro.aovs;
 #if !SOFTMOL_HAVE_GL
   if (a.backend == "gl")
     throw io::InputError({"--backend"}, "this softmol was built without the OpenGL mirror (configure with -DSOFTMOL_BUILD_GL=ON)");
-#endif
-  // The mirror has the passes whose CPU twins exist in GLSL (gl/README.md): AO is not one yet.
-  if (a.backend == "gl" && a.ao != "none")
-    throw io::InputError({"--ao"}, "ambient occlusion is not mirrored in the GL backend yet (use --backend cpu)");
-  if (a.backend == "gl" && (aovs & effects::kAovAo))
-    throw io::InputError({"--aov"}, "the AO output is not mirrored in the GL backend yet (use --backend cpu)");
-  if (a.backend == "gl" && !a.highlight.empty())
-    throw io::InputError({"--highlight"}, "halos are not mirrored in the GL backend yet (use --backend cpu)");
+#else
   if (a.backend == "gl") {
-    // Effects whose passes have no GL twin yet (gl/README.md lists what is mirrored).
-    const std::pair<bool, const char*> cpuOnly[] = {
-        {a.shadows, "--shadows"}, {a.outlines, "--outlines"}, {a.halos, "--halos"}};
-    for (const auto& [on, flag] : cpuOnly)
-      if (on) throw io::InputError({flag}, std::string(flag) + " is not mirrored in the GL backend yet (use --backend cpu)");
+    effects::RenderOptions planned = ro;
+    if (!a.highlight.empty()) planned.highlight.spheres = {1};  // the halo passes will be planned
+    RequireMirrored(planned);
   }
-  if (a.highlightTrail > 0 && a.trajectory.empty())
+#endif
+  if (ro.highlight.trail > 0 && a.trajectory.empty())
     throw io::InputError({"--highlight-trail"}, "--highlight-trail needs --trajectory FILE (a trail follows the selection across frames)");
-  if (a.highlightTrail > 0 && a.highlight.empty())
+  if (ro.highlight.trail > 0 && a.highlight.empty())
     throw io::InputError({"--highlight-trail"}, "--highlight-trail needs --highlight SELECTION");
   std::optional<io::Selection> highlight;
   if (!a.highlight.empty()) {
@@ -201,50 +239,7 @@ int RunRender(const RenderArgs& a) {
       throw io::InputError({"--highlight", 0, e.where().column}, e.message());
     }
   }
-  const uint32_t haloRgb = ParseHexColor(a.highlightColor, "--highlight-color");
-  effects::RenderOptions ro;
-  ro.ssaa = a.ssaa;
-  ro.transparent = a.transparent;
-  ro.aovs = aovs;
-  ro.tileSize = a.tileSize;
-  ro.ao = a.ao == "baked"       ? effects::AoMode::kBaked
-          : a.ao == "cone"      ? effects::AoMode::kCone
-          : a.ao == "reference" ? effects::AoMode::kReference
-                                : effects::AoMode::kNone;
-  if (ro.ao != effects::AoMode::kNone) {
-    // With AO the ambient term carries the shape (QuteMol's look): more ambient, less direct.
-    ro.shading.ambient = 0.75f;
-    ro.shading.diffuse = 0.40f;
-    ro.shading.specular = 0.25f;
-  }
-  ValidateBakeFlags(a.bake);
-  ro.cone.cones = a.cones;
-  ro.reference.rays = a.aoRays;
-  ro.pyramid.resolution = a.aoGrid;
-  ro.background = LinearColor(a.background, "--background");
-  ro.contourWidth = float(a.contours);
-  ro.contourDepthAware = a.contourDepthAware;
-  ro.contourColor = LinearColor(a.contourColor, "--contour-color");
-  ro.nearClip = float(a.nearClip);
-  ro.shadows = a.shadows;
-  ro.shadow.mapSize = a.shadowMap;
-  ro.shadow.pcfSamples = a.pcfSamples;
-  ro.shadow.pretestSamples = a.pcfPretest;
-  ro.shadow.filterRadius = float(a.shadowSoftness);
-  if (a.pcfPretest > a.pcfSamples)
-    throw io::InputError({"--pcf-pretest"}, "the pre-test takes at most --pcf-samples taps");
-  effects::ValidateShadowOptions(ro.shadow);
-  ro.outlines = a.outlines;
-  ro.outlineColor = LinearColor(a.outlineColor, "--outline-color");
-  ro.depthHalos = a.halos;
-  ro.depthHalo.size = float(a.haloSize);
-  ro.depthHalo.strength = float(a.haloStrength);
-  ro.depthHalo.maxGap = float(a.haloMaxGap);
-  effects::ValidateDepthHaloOptions(ro.depthHalo);
-  ro.depthHaloColor = LinearColor(a.haloColor, "--halo-color");
-  ro.depthCue = float(a.depthCue);
-  ro.fogColor = a.fogColor.empty() ? ro.background : LinearColor(a.fogColor, "--fog-color");
-  if (int64_t(size.width) * size.height * a.ssaa * a.ssaa > (int64_t(1) << 28))
+  if (int64_t(size.width) * size.height * ro.ssaa * ro.ssaa > (int64_t(1) << 28))
     throw io::InputError({"--ssaa"}, "size × ssaa² is more than 2^28 samples");
   std::unique_ptr<tbb::global_control> threads;
   if (a.threads > 0)
@@ -277,7 +272,7 @@ int RunRender(const RenderArgs& a) {
   raster::RepresentationOptions rep;
   rep.style = style;
   const raster::PrimitiveScene scene = raster::BuildRepresentation(loaded.molecule, rep);
-  const double repMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  const double repMs = MsSince(t0);
   trace.AddComplete("representation", "load", t, repMs);
   if (scene.size() == 0)
     throw io::InputError({a.molecule}, "nothing to draw in style '" + a.style + "'");
@@ -289,10 +284,6 @@ int RunRender(const RenderArgs& a) {
     ro.highlight.spheres = io::Evaluate(*highlight, loaded.molecule);
     if (std::none_of(ro.highlight.spheres.begin(), ro.highlight.spheres.end(), [](uint8_t b) { return b != 0; }))
       throw io::InputError({"--highlight"}, "selection '" + a.highlight + "' matches no atom");
-    const effects::LinearRgb c = effects::UnpackSrgb(haloRgb);
-    ro.highlight.color = glm::vec3(c.r, c.g, c.b);
-    ro.highlight.strength = float(a.highlightStrength);
-    ro.highlight.trail = a.highlightTrail;
   }
 
   raster::Camera cam = raster::DefaultCamera(scene, size.width, size.height);
@@ -324,7 +315,7 @@ int RunRender(const RenderArgs& a) {
 
   effects::RenderedFrame frame;
   effects::FrameResources resources;
-  double frameStart = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+  double frameStart = MsSince(start);
   double best = 1e300, sum = 0;
   int rendered = 0;
 #if SOFTMOL_HAVE_GL
@@ -366,13 +357,13 @@ int RunRender(const RenderArgs& a) {
   auto writeOutputs = [&](const std::string& path) {
     const Clock::time_point w0 = Clock::now();
     if (kind == OutputKind::kPng) {
-      io::WritePng(path, frame.width, frame.height, a.transparent ? 4 : 3,
-                   effects::EncodeSrgb8(frame, a.transparent));
+      io::WritePng(path, frame.width, frame.height, ro.transparent ? 4 : 3,
+                   effects::EncodeSrgb8(frame, ro.transparent));
       if (aovs != 0) io::WriteExr(SiblingAovPath(path), ToExr(frame, /*withColor=*/false));
     } else {
       io::WriteExr(path, ToExr(frame, /*withColor=*/true));
     }
-    const double ms = std::chrono::duration<double, std::milli>(Clock::now() - w0).count();
+    const double ms = MsSince(w0);
     trace.AddComplete("write", "output", frameStart, ms);
     frameStart += ms;
   };
@@ -420,7 +411,7 @@ int RunRender(const RenderArgs& a) {
                 a.molecule.c_str(), loaded.molecule.atomCount(), scene.spheres.radius.size(),
                 scene.cylinders.radius.size(), scene.ellipsoids.color.size(), a.output.c_str(),
                 frame.width, frame.height);
-    if (a.ssaa > 1) std::printf(", ssaa %d", a.ssaa);
+    if (ro.ssaa > 1) std::printf(", ssaa %d", ro.ssaa);
     if (trajectory) std::printf(", %zu trajectory frames", frameIndices.size());
     std::printf(")\n");
     std::printf("frame: %.2f ms", frame.totalMs);

@@ -6,6 +6,8 @@
 
 #include <cstdint>
 
+#include <glm/vec3.hpp>
+
 namespace softmol::effects {
 
 // Linear value of an sRGB-encoded 8-bit code (IEC 61966-2-1), exact to float rounding.
@@ -23,5 +25,9 @@ struct LinearRgb {
   float r, g, b;
 };
 LinearRgb UnpackSrgb(uint32_t rgb);
+inline glm::vec3 LinearFromSrgb(uint32_t rgb) {
+  const LinearRgb c = UnpackSrgb(rgb);
+  return glm::vec3(c.r, c.g, c.b);
+}
 
 }  // namespace softmol::effects

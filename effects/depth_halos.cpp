@@ -21,7 +21,6 @@
 #include "common/check.h"
 #include "effects/depth_halos.h"
 #include "effects/shared/prelude.h"
-#include "io/error.h"
 #include "raster/detail/setup.h"
 
 namespace softmol::effects {
@@ -131,9 +130,7 @@ using BandFn = void (*)(const HaloFrame&, const HaloDisc*, const uint32_t*, size
 void RunDepthHalos(const raster::PrimitiveScene& scene, const raster::Camera& camera,
                    const raster::GBuffer& g, const DepthHaloOptions& o, std::span<float> halo,
                    bool scalar) {
-  SOFTMOL_CHECK(o.size > 0.0f && o.size <= 1000.0f);
-  SOFTMOL_CHECK(o.strength > 0.0f && o.strength <= 1.0f);
-  SOFTMOL_CHECK(o.maxGap > 0.0f && o.maxGap <= 1e6f);
+  SOFTMOL_CHECK(ValidDepthHaloOptions(o));
   const int width = g.width, height = g.height;
   SOFTMOL_CHECK(width >= 0 && height >= 0);
   SOFTMOL_CHECK(halo.size() == size_t(width) * size_t(height));
@@ -215,20 +212,11 @@ void RunDepthHalos(const raster::PrimitiveScene& scene, const raster::Camera& ca
   });
 }
 
-void Require(bool ok, const char* option, const std::string& message) {
-  if (!ok) throw io::InputError({option}, message);
-}
-
 }  // namespace
 
-void ValidateDepthHaloOptions(const DepthHaloOptions& o) {
-  Require(std::isfinite(o.size) && o.size > 0.0f && o.size <= 1000.0f, "--halo-size",
-          "halo size must be a number of Å in (0, 1000], got " + std::to_string(o.size));
-  Require(std::isfinite(o.strength) && o.strength > 0.0f && o.strength <= 1.0f, "--halo-strength",
-          "halo strength must be in (0, 1], got " + std::to_string(o.strength));
-  Require(std::isfinite(o.maxGap) && o.maxGap > 0.0f && o.maxGap <= 1e6f, "--halo-max-gap",
-          "halo maximum depth gap must be a number of Å in (0, 1e6], got " +
-              std::to_string(o.maxGap));
+bool ValidDepthHaloOptions(const DepthHaloOptions& o) {
+  return std::isfinite(o.size) && o.size > 0.0f && o.size <= 1000.0f && std::isfinite(o.strength) &&
+         o.strength > 0.0f && o.strength <= 1.0f && std::isfinite(o.maxGap) && o.maxGap > 0.0f && o.maxGap <= 1e6f;
 }
 
 void ComputeDepthHalos(const raster::PrimitiveScene& scene, const raster::Camera& camera,

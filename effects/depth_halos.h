@@ -34,16 +34,15 @@ struct DepthHaloOptions {
   float maxGap = 4.0f;
 };
 
-// Throws io::InputError naming the option ("--halo-size", "--halo-strength",
-// "--halo-max-gap") when a value is out of range: size in (0, 1000] Å, strength in (0, 1],
-// maxGap in (0, 1e6] Å, all finite.
-void ValidateDepthHaloOptions(const DepthHaloOptions& options);
+// True when size is in (0, 1000] Å, strength in (0, 1] and maxGap in (0, 1e6] Å, all finite.
+// The pass checks it as an invariant.
+bool ValidDepthHaloOptions(const DepthHaloOptions& options);
 
 // One halo opacity in [0, 1] per sample of `gbuffer` (index y·width + x, y up) into `halo`
 // (size gbuffer.width·gbuffer.height). `camera` is the G-buffer's view (its width and height
 // are replaced by the G-buffer's, so a supersampled G-buffer works); near/far of 0 are fitted to
 // the scene as the rasterizer does. Discs of atoms whose centre lies outside [near, far] are
-// clipped, as a GPU would clip them. `options` must pass ValidateDepthHaloOptions.
+// clipped, as a GPU would clip them. `options` must pass ValidDepthHaloOptions.
 // Threads: the current TBB arena, one task per band of rows.
 void ComputeDepthHalos(const raster::PrimitiveScene& scene, const raster::Camera& camera,
                        const raster::GBuffer& gbuffer, const DepthHaloOptions& options,

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -72,7 +73,7 @@ struct RenderOptions {
   DepthHaloOptions depthHalo;
   glm::vec3 depthHaloColor{0.0f, 0.0f, 0.0f};
   float depthCue = 0.0f;      // strength in [0,1] at the far side of the molecule; 0 = off
-  glm::vec3 fogColor{1.0f, 1.0f, 1.0f};  // what depth cueing blends toward (the background)
+  std::optional<glm::vec3> fogColor;  // what depth cueing blends toward; unset: the background
 };
 
 struct PassTiming {
@@ -115,6 +116,10 @@ struct FrameResources {
   HaloVolume haloVolume;
   std::vector<float> halo;
 };
+
+// The lighting that suits AO (QuteMol's look: the ambient term carries the shape): what the
+// CLI and presets use whenever an AO method is on.
+ShadingOptions AoShading();
 
 // The compositing parameters of the options (colours, depth-cue range, near-clip lightening);
 // the per-sample buffers (AO, shadow, outline, halo) are left for the caller to attach.

@@ -17,6 +17,7 @@
 #include <glm/vec3.hpp>
 
 #include "ao/occupancy_pyramid.h"
+#include "effects/color.h"
 #include "raster/camera.h"
 #include "raster/gbuffer.h"
 #include "raster/primitives.h"
@@ -27,7 +28,7 @@ struct HighlightOptions {
   // One byte per sphere of the scene (sphere i == atom i for the per-atom styles): 1 selected.
   // Empty: no highlight (no halo passes run).
   std::vector<uint8_t> spheres;
-  glm::vec3 color{1.0f, 0.6038f, 0.0f};  // linear RGB (sRGB ffcc00)
+  glm::vec3 color = LinearFromSrgb(0xffcc00);  // linear RGB
   float strength = 0.8f;                 // peak opacity scale, [0, 1]
   float width = 1.5f;                    // Å: how far the glow reaches beyond the atoms
   // Share of the glow behind the visible surface that shows through it, [0, 1]: the surface

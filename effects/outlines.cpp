@@ -17,31 +17,37 @@
 
 #include "common/check.h"
 #include "effects/shared/prelude.h"
-#include "io/error.h"
 
 namespace softmol::effects {
 HWY_EXPORT(OutlineRowImpl);
 
 namespace {
 
-void Require(bool ok, const char* option, const std::string& message) {
-  if (!ok) throw io::InputError({option}, message);
-}
-
 bool InRange(float v, float lo, float hi) { return std::isfinite(v) && v >= lo && v <= hi; }
 
 }  // namespace
 
-void ValidateOutlineOptions(const OutlineOptions& o) {
-  Require(InRange(o.depthThreshold, 0.0f, 1.0e4f), "outlines.depth-threshold", "must be in 0..10000 Å");
-  Require(InRange(o.depthSoftness, 1.0e-4f, 1.0e4f), "outlines.depth-softness",
-          "must be in 0.0001..10000 Å");
-  Require(InRange(o.slopeAllowance, 0.0f, 1.0e3f), "outlines.slope-allowance", "must be in 0..1000");
-  Require(InRange(o.normalThreshold, 0.0f, 4.0f), "outlines.normal-threshold", "must be in 0..4");
-  Require(InRange(o.normalSoftness, 1.0e-4f, 4.0f), "outlines.normal-softness", "must be in 0.0001..4");
+bool ValidOutlineOptions(const OutlineOptions& o) {
+  return InRange(o.depthThreshold, 0.0f, 1.0e4f) && InRange(o.depthSoftness, 1.0e-4f, 1.0e4f) &&
+         InRange(o.slopeAllowance, 0.0f, 1.0e3f) && InRange(o.normalThreshold, 0.0f, 4.0f) &&
+         InRange(o.normalSoftness, 1.0e-4f, 4.0f);
 }
 
 namespace detail {
+
+OutlineConstants MakeOutlineConstants(const raster::Camera& camera, const OutlineOptions& o) {
+  OutlineConstants k;
+  k.pixelScale = float(raster::PixelScale(camera));
+  k.ortho = camera.orthographic;
+  k.cap = o.depthThreshold + o.depthSoftness;  // a full line
+  k.depthThreshold = o.depthThreshold;
+  k.depthInvSoftness = 1.0f / o.depthSoftness;
+  k.normalThreshold = o.normalThreshold;
+  k.normalInvSoftness = 1.0f / o.normalSoftness;
+  k.slopeAllowance = o.slopeAllowance;
+  k.width = camera.width;
+  return k;
+}
 
 void OutlineRow(const OutlineConstants& k, const OutlineRows& rows, float* strength) noexcept {
   HWY_DYNAMIC_DISPATCH(OutlineRowImpl)(k, rows, strength);
@@ -67,7 +73,7 @@ void OutlineRowScalar(const OutlineConstants& k, const OutlineRows& rows, float*
         const int i = xs[q], idx = 3 * r + q;
         const float zi = rows.depth[r][i];
         const bool ci = covered(zi);
-        const float predicted = float(i - x) * sx + rows.dy[r] * sy;
+        const float predicted = PredictedDepthStep(float(i - x), rows.dy[r], sx, sy);
         dz[idx] = ClampedDepthStep(zi, zc, predicted, ci, cc, k.cap);
         // Normals only differ between two surfaces of two primitives (a crease); the
         // background's line is the depth's, a primitive's own curvature draws none.
@@ -93,23 +99,14 @@ namespace {
 template <class RowFn>
 void Run(const raster::GBuffer& g, const raster::Camera& camera, const OutlineOptions& o,
          std::span<float> strength, RowFn row) {
-  ValidateOutlineOptions(o);
+  SOFTMOL_CHECK(ValidOutlineOptions(o));
   const int w = g.width, h = g.height;
   const size_t n = size_t(w) * size_t(h);
   SOFTMOL_CHECK(strength.size() == n && g.depth.size() == n && g.normalX.size() == n &&
                 g.primitiveId.size() == n);
   SOFTMOL_CHECK(camera.width == w && camera.height == h);
   if (n == 0) return;
-  detail::OutlineConstants k;
-  k.pixelScale = float(raster::PixelScale(camera));
-  k.ortho = camera.orthographic;
-  k.cap = o.depthThreshold + o.depthSoftness;  // a full line
-  k.depthThreshold = o.depthThreshold;
-  k.depthInvSoftness = 1.0f / o.depthSoftness;
-  k.normalThreshold = o.normalThreshold;
-  k.normalInvSoftness = 1.0f / o.normalSoftness;
-  k.slopeAllowance = o.slopeAllowance;
-  k.width = w;
+  const detail::OutlineConstants k = detail::MakeOutlineConstants(camera, o);
   tbb::parallel_for(tbb::blocked_range<int>(0, h, 8), [&](const tbb::blocked_range<int>& range) {
     for (int y = range.begin(); y < range.end(); ++y) {
       const int ys[3] = {y > 0 ? y - 1 : 0, y, y < h - 1 ? y + 1 : h - 1};

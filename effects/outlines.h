@@ -28,8 +28,9 @@ struct OutlineOptions {
   float normalSoftness = 0.4f;   // from the threshold to a full line
 };
 
-// Throws io::InputError naming the option ("outlines.depth-threshold", ...) when out of range.
-void ValidateOutlineOptions(const OutlineOptions& options);
+// True when every field is finite and in range (thresholds >= 0, softnesses > 0). The pass
+// checks it as an invariant.
+bool ValidOutlineOptions(const OutlineOptions& options);
 
 // One line strength per G-buffer sample (index y·width + x) into `strength`; background
 // samples beside a surface get the silhouette too (the background enters the filter as a
@@ -53,6 +54,9 @@ struct OutlineConstants {
   float depthThreshold, depthInvSoftness, normalThreshold, normalInvSoftness, slopeAllowance;
   int width;
 };
+
+// Computed once per frame in C++, for both twins and the GL pass (gl/outlines.cpp).
+OutlineConstants MakeOutlineConstants(const raster::Camera& camera, const OutlineOptions& options);
 
 // The three rows around row y (index 0 below, 1 = y, 2 above; the border repeats its row) and
 // their real offsets from y (0 where repeated).

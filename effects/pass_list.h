@@ -1,44 +1,65 @@
 // effects/pass_list.h — the frame as a list of passes, built from what the scene asks for
-// (DESIGN.md rule 3). Every pass declares the buffers it reads and writes; PlanPasses keeps a
-// pass only when something downstream (the colour image, an AOV) needs one of its outputs, and
-// asks the G-buffer for exactly the channels the kept passes read. The frame renderer runs the
-// plan in order; tests assert the plans of representative scenes.
+// (DESIGN.md rule 3). A pass is one unit (effects/passes/): its name, the option that switches
+// it on, the buffers it reads and writes, whether it reads only a pixel's own samples (so it
+// could run fused per tile), its parameters (io/params.h) and its CPU body. The registry lists
+// the units in run order; PlanPasses keeps a unit only when something downstream (the colour
+// image, an AOV) needs one of its outputs, and asks the G-buffer for exactly the channels the
+// kept passes read. Both backends run the same plan; the profile names its passes.
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
+
+#include "io/params.h"
 
 namespace softmol::effects {
 
 struct RenderOptions;
+struct FrameContext;
 
-// Everything a pass can read or write, one bit each.
-enum FrameBuffer : uint64_t {
-  kBufScene = 1ull << 0,          // the primitives (input, always present)
-  kBufDepth = 1ull << 1,          // G-buffer channels (raster/gbuffer.h)
-  kBufNormal = 1ull << 2,
-  kBufBaseColor = 1ull << 3,
-  kBufPrimitiveId = 1ull << 4,
-  kBufSurfaceCoord = 1ull << 5,
-  kBufLine = 1ull << 6,
-  kBufCapped = 1ull << 7,
-  kBufAoAtlas = 1ull << 8,        // baked AO texture (kept across frames)
-  kBufOccupancy = 1ull << 9,      // occupancy pyramid of the scene
-  kBufAo = 1ull << 10,            // one accessibility per G-buffer sample
-  kBufShadowMap = 1ull << 11,     // depth seen from the light
-  kBufShadow = 1ull << 12,        // one light visibility per sample
-  kBufOutline = 1ull << 13,       // Sobel line strength per sample
-  kBufDepthHalo = 1ull << 14,     // Tarini halo opacity per sample
-  kBufSelectionOccupancy = 1ull << 15,  // occupancy pyramid of the highlighted selection
-  kBufHaloVolume = 1ull << 16,    // the object-space halo field (kept across frames with a trail)
-  kBufColor = 1ull << 17,         // resolved RGBA
-  kBufAovs = 1ull << 18,          // the AOV planes
+// Everything a pass can read or write, one bit each, with the name the profile shows.
+#define SOFTMOL_FRAME_BUFFERS(X)                                                           \
+  X(Scene, "scene")                     /* the primitives (input, always present) */       \
+  X(Depth, "depth")                     /* G-buffer channels (raster/gbuffer.h) */         \
+  X(Normal, "normal")                                                                      \
+  X(BaseColor, "base color")                                                               \
+  X(PrimitiveId, "primitive id")                                                           \
+  X(SurfaceCoord, "surface coord")                                                         \
+  X(Line, "line")                                                                          \
+  X(Capped, "capped")                                                                      \
+  X(AoAtlas, "ao atlas")                /* baked AO texture (kept across frames) */        \
+  X(Occupancy, "occupancy")             /* occupancy pyramid of the scene */               \
+  X(Ao, "ao")                           /* one accessibility per G-buffer sample */        \
+  X(ShadowMap, "shadow map")            /* depth seen from the light */                    \
+  X(Shadow, "shadow")                   /* one light visibility per sample */              \
+  X(Outline, "outline")                 /* Sobel line strength per sample */               \
+  X(DepthHalo, "depth halo")            /* Tarini halo opacity per sample */               \
+  X(SelectionOccupancy, "selection occupancy") /* pyramid of the highlighted selection */  \
+  X(HaloVolume, "halo volume")          /* object-space halo field (kept with a trail) */  \
+  X(Color, "color")                     /* resolved RGBA */                                \
+  X(Aovs, "aovs")                       /* the AOV planes */
+
+namespace detail {
+enum class BufferIndex : int {
+#define SOFTMOL_BUFFER_INDEX(id, name) id,
+  SOFTMOL_FRAME_BUFFERS(SOFTMOL_BUFFER_INDEX)
+#undef SOFTMOL_BUFFER_INDEX
+  kCount
 };
+}  // namespace detail
+
+enum FrameBuffer : uint64_t {
+#define SOFTMOL_BUFFER_BIT(id, name) kBuf##id = 1ull << int(detail::BufferIndex::id),
+  SOFTMOL_FRAME_BUFFERS(SOFTMOL_BUFFER_BIT)
+#undef SOFTMOL_BUFFER_BIT
+};
+inline constexpr int kFrameBufferCount = int(detail::BufferIndex::kCount);
 inline constexpr uint64_t kBufGBuffer = kBufDepth | kBufNormal | kBufBaseColor | kBufPrimitiveId |
                                         kBufSurfaceCoord | kBufLine | kBufCapped;
 
-// The passes a frame can run, in the order they run.
+// The passes a frame can run, in the order they run (the registry lists them in this order).
 enum class PassId : uint8_t {
   kGBuffer,
   kAoBake,
@@ -54,7 +75,35 @@ enum class PassId : uint8_t {
   kHaloPyramid,
   kObjectHalos,
   kAovs,
+  kCount
 };
+
+// One pass, as data. Units are constants defined each in its own file under effects/passes/.
+struct PassUnit {
+  PassId id;
+  const char* name;       // as the profile shows it
+  const char* enabledBy;  // the option that switches it on ("--shadows"); "" when always there
+  // True when the pass reads only the samples of the pixel it writes (no neighbours, no other
+  // pixel's result): such passes may run fused per tile.
+  bool perSample;
+  bool (*wanted)(const RenderOptions&);       // its effect is switched on
+  uint64_t (*reads)(const RenderOptions&);    // FrameBuffer bits
+  uint64_t writes;                            // FrameBuffer bits (the G-buffer's are pruned)
+  void (*run)(FrameContext&);                 // the CPU body
+  io::ParamTable<RenderOptions> (*params)();  // the options it reads (may be empty)
+};
+
+// Every unit, in run order (PassRegistry()[i].id == PassId(i)).
+std::span<const PassUnit* const> PassRegistry();
+const PassUnit& Pass(PassId id);
+
+// The options of every pass, and of the frame itself (size of a sample, outputs), in registry
+// order: what the CLI, scene files and presets set.
+io::ParamTable<RenderOptions> RenderParams();
+
+// Cross-parameter rules that one parameter's range cannot say (the PCF pre-test takes at most
+// --pcf-samples taps); throws io::InputError naming the later flag.
+void CheckRenderOptions(const RenderOptions& options);
 
 struct PlannedPass {
   PassId id;

@@ -11,7 +11,6 @@
 #include "effects/color.h"
 #include "effects/shading_kernel.h"
 #include "effects/shared/prelude.h"
-#include "io/error.h"
 
 namespace softmol::effects {
 namespace {
@@ -49,27 +48,20 @@ void SceneDepthRange(const raster::BoundingSphere& bounds, const raster::Camera&
   farDepth = float(std::max(centre + bounds.radius, double(nearDepth) + 1.0e-3));
 }
 
-void ValidateShadeInputs(const ShadeInputs& in) {
-  auto require = [](bool ok, const char* option, const char* message) {
-    if (!ok) throw io::InputError({option}, message);
+bool ValidShadeInputs(const ShadeInputs& in) {
+  const auto unitColor = [](glm::vec3 c) {
+    return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z) && c.x >= 0.0f && c.y >= 0.0f &&
+           c.z >= 0.0f && c.x <= 1.0f && c.y <= 1.0f && c.z <= 1.0f;
   };
-  auto unitColor = [](glm::vec3 c) {
-    return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z) && c.x >= 0.0f &&
-           c.y >= 0.0f && c.z >= 0.0f && c.x <= 1.0f && c.y <= 1.0f && c.z <= 1.0f;
-  };
-  require(unitColor(in.lineColor), "contours.color", "components must be in 0..1");
-  require(unitColor(in.outlineColor), "outlines.color", "components must be in 0..1");
-  require(unitColor(in.haloColor), "halos.color", "components must be in 0..1");
-  require(unitColor(in.fogColor), "depth-cue.color", "components must be in 0..1");
-  require(std::isfinite(in.cueStrength) && in.cueStrength >= 0.0f && in.cueStrength <= 1.0f,
-          "depth-cue.strength", "must be in 0..1");
+  const bool colors = unitColor(in.lineColor) && unitColor(in.outlineColor) && unitColor(in.haloColor) &&
+                      unitColor(in.fogColor);
+  const bool cue = std::isfinite(in.cueStrength) && in.cueStrength >= 0.0f && in.cueStrength <= 1.0f;
   // A range below 1e-3 Å would make its inverse overflow toward inf (and inf·0 = NaN).
-  require(in.cueStrength == 0.0f || (std::isfinite(in.cueNear) && std::isfinite(in.cueFar) &&
-                                     in.cueFar - in.cueNear >= 1.0e-3f),
-          "depth-cue.far", "must be finite and at least 0.001 Å beyond depth-cue.near");
-  require(std::isfinite(in.clipNear) && std::isfinite(in.clipLighten) &&
-              (in.clipLighten == 0.0f || in.clipLighten >= 1.0e-3f),
-          "near-clip.lighten", "must be 0 (off) or at least 0.001 Å");
+  const bool cueRange = in.cueStrength == 0.0f ||
+                        (std::isfinite(in.cueNear) && std::isfinite(in.cueFar) && in.cueFar - in.cueNear >= 1.0e-3f);
+  const bool clip = std::isfinite(in.clipNear) && std::isfinite(in.clipLighten) &&
+                    (in.clipLighten == 0.0f || in.clipLighten >= 1.0e-3f);
+  return colors && cue && cueRange && clip;
 }
 
 void ShadeAndResolve(const raster::GBuffer& g, int ssaa, const ShadingOptions& options,
@@ -82,7 +74,7 @@ void ShadeAndResolve(const raster::GBuffer& g, int ssaa, const ShadingOptions& o
 
 void ShadeAndResolve(const raster::GBuffer& g, int ssaa, const ShadingOptions& options,
                      const Backdrop& backdrop, const ShadeInputs& inputs, std::span<float> rgba) {
-  ValidateShadeInputs(inputs);
+  SOFTMOL_CHECK(ValidShadeInputs(inputs));
   const size_t samples = size_t(g.width) * size_t(g.height);
   SOFTMOL_CHECK(ssaa >= 1 && g.width % ssaa == 0 && g.height % ssaa == 0);
   const int width = g.width / ssaa, height = g.height / ssaa;

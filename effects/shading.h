@@ -64,8 +64,10 @@ struct ShadeInputs {
 void SceneDepthRange(const raster::BoundingSphere& bounds, const raster::Camera& camera,
                      float& nearDepth, float& farDepth);
 
-// Throws io::InputError naming the option ("depth-cue.strength", ...) for a bad value.
-void ValidateShadeInputs(const ShadeInputs& inputs);
+// True when every colour is in [0,1], the cue strength in [0,1] with a range of at least
+// 0.001 Å, and the clip values finite. The shading passes (both backends) check it as an
+// invariant; MakeShadeInputs builds valid inputs from validated options.
+bool ValidShadeInputs(const ShadeInputs& inputs);
 
 // The deferred shading pass fused with the supersample resolve: shades every G-buffer sample
 // (needs the normal, base-colour and id channels) and averages each ssaa×ssaa block into one

@@ -21,33 +21,15 @@
 
 #include "common/check.h"
 #include "effects/shared/prelude.h"
-#include "io/error.h"
 
 namespace softmol::effects {
 HWY_EXPORT(ShadowRowImpl);
 
-namespace {
-
-void Require(bool ok, const char* option, const std::string& message) {
-  if (!ok) throw io::InputError({option}, message);
-}
-
-}  // namespace
-
-void ValidateShadowOptions(const ShadowOptions& o) {
-  Require(o.mapSize >= 64 && o.mapSize <= 8192, "shadows.map-size", "must be in 64..8192");
-  Require(o.pcfSamples >= 1 && o.pcfSamples <= detail::kMaxPcfSamples, "shadows.samples",
-          "must be in 1..256");
-  Require(o.pretestSamples >= 0 && o.pretestSamples <= o.pcfSamples, "shadows.pretest",
-          "must be in 0..samples");
-  Require(std::isfinite(o.filterRadius) && o.filterRadius >= 0.0f && o.filterRadius <= 100.0f,
-          "shadows.radius", "must be in 0..100 Å");
-  Require(std::isfinite(o.depthBias) && o.depthBias >= 0.0f && o.depthBias <= 1000.0f,
-          "shadows.bias", "must be in 0..1000 texels");
-  Require(std::isfinite(o.normalOffset) && o.normalOffset >= 0.0f && o.normalOffset <= 1000.0f,
-          "shadows.normal-offset", "must be in 0..1000 texels");
-  Require(std::isfinite(o.maxSlope) && o.maxSlope >= 0.0f && o.maxSlope <= 1000.0f,
-          "shadows.max-slope", "must be in 0..1000");
+bool ValidShadowOptions(const ShadowOptions& o) {
+  const auto in = [](float v, float lo, float hi) { return std::isfinite(v) && v >= lo && v <= hi; };
+  return o.mapSize >= 64 && o.mapSize <= 8192 && o.pcfSamples >= 1 && o.pcfSamples <= detail::kMaxPcfSamples &&
+         o.pretestSamples >= 0 && o.pretestSamples <= o.pcfSamples && in(o.filterRadius, 0.0f, 100.0f) &&
+         in(o.depthBias, 0.0f, 1000.0f) && in(o.normalOffset, 0.0f, 1000.0f) && in(o.maxSlope, 0.0f, 1000.0f);
 }
 
 void PcfPattern(int count, int pretest, std::vector<float>& x, std::vector<float>& y) {
@@ -70,7 +52,7 @@ void PcfPattern(int count, int pretest, std::vector<float>& x, std::vector<float
 
 void BuildShadowMap(const raster::PrimitiveScene& scene, const raster::Camera& eyeCamera,
                     glm::vec3 lightDirEye, const ShadowOptions& options, ShadowMap& map) {
-  ValidateShadowOptions(options);
+  SOFTMOL_CHECK(ValidShadowOptions(options));
   const raster::BoundingSphere b = scene.Bounds();
   const glm::dvec3 le(lightDirEye);
   const double len = glm::length(le);
@@ -229,7 +211,7 @@ namespace {
 template <class RowFn>
 ShadowStats Run(const ShadowMap& map, const raster::Camera& camera, const raster::GBuffer& g,
                 const ShadowOptions& options, std::span<float> visibility, RowFn row) {
-  ValidateShadowOptions(options);
+  SOFTMOL_CHECK(ValidShadowOptions(options));
   const size_t n = size_t(g.width) * size_t(g.height);
   SOFTMOL_CHECK(visibility.size() == n);
   SOFTMOL_CHECK(camera.width == g.width && camera.height == g.height);

@@ -30,8 +30,9 @@ struct ShadowOptions {
   float maxSlope = 4.0f;      // cap of tan θ in the slope-scaled bias (see shadow_pcf.inc)
 };
 
-// Throws io::InputError naming the option ("shadows.map-size", ...) when out of range.
-void ValidateShadowOptions(const ShadowOptions& options);
+// True when every field is in the range its comment gives. The passes check it as an
+// invariant; the CLI validates the user's values against their declarations first.
+bool ValidShadowOptions(const ShadowOptions& options);
 
 struct ShadowMap {
   raster::Camera light;            // orthographic, looking along −(direction to the light)

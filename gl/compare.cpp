@@ -141,6 +141,21 @@ BufferComparison CompareRgba(const char* name, const char* unit, std::span<const
 
 }  // namespace
 
+BufferComparison CompareSamplePlane(const std::string& name, std::span<const float> cpu, std::span<const float> gl,
+                                    int width, int height) {
+  SOFTMOL_CHECK(cpu.size() == gl.size() && cpu.size() == size_t(width) * size_t(height));
+  BufferComparison c;
+  c.name = name;
+  c.unit = "ulp";
+  c.differs.assign(cpu.size(), 0);
+  for (size_t i = 0; i < cpu.size(); ++i) {
+    const uint64_t d = UlpDistance(cpu[i], gl[i]);
+    Record(c, d);
+    c.differs[i] = d != 0;
+  }
+  return c;
+}
+
 BufferComparison CompareColorUlp(std::span<const float> cpu, std::span<const float> gl, int width,
                                  int height) {
   return CompareRgba("color (linear float)", "ulp", cpu, gl, width, height, UlpDistance);
@@ -196,6 +211,8 @@ BackendReport CompareBackends(FrameRenderer& renderer, const raster::PrimitiveSc
     r.buffers.push_back(CompareFloatChannel("normal", cpu, glSamples, normal));
   }
   if (cpu.channels & raster::kBaseColor) r.buffers.push_back(CompareBaseColor(cpu, glSamples));
+  if (!cpuResources.outline.empty() && options.outlines)
+    r.buffers.push_back(CompareSamplePlane("outline", cpuResources.outline, renderer.Outline(), cpu.width, cpu.height));
   if (options.color) {
     r.buffers.push_back(CompareColorUlp(r.cpu.rgba, r.gl.rgba, r.cpu.width, r.cpu.height));
     r.buffers.push_back(CompareColor8(r.cpu.rgba, r.gl.rgba, r.cpu.width, r.cpu.height));

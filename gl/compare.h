@@ -48,6 +48,9 @@ BufferComparison CompareFloatChannel(
     std::span<const std::pair<const std::vector<float>*, const std::vector<float>*>> planes);
 // Base colour (uint) over the pixels where both see the same primitive.
 BufferComparison CompareBaseColor(const raster::GBuffer& cpu, const raster::GBuffer& gl);
+// One float per sample (a pass's output plane, row 0 at the bottom), every sample, in ULPs.
+BufferComparison CompareSamplePlane(const std::string& name, std::span<const float> cpu, std::span<const float> gl,
+                                    int width, int height);
 // Interleaved linear RGBA frames (top row first): per-channel ULPs ("color float") or 8-bit
 // sRGB levels after effects::LinearToSrgb8 ("color 8-bit"), every pixel.
 BufferComparison CompareColorUlp(std::span<const float> cpu, std::span<const float> gl, int width, int height);
@@ -60,7 +63,7 @@ std::string FormatComparison(const BufferComparison& c);
 
 struct BackendReport {
   int sampleWidth = 0, sampleHeight = 0;  // G-buffer size (output × ssaa)
-  std::vector<BufferComparison> buffers;  // id, depth, normal, base color, color float, color 8-bit
+  std::vector<BufferComparison> buffers;  // id, depth, normal, base color, outline, color float, color 8-bit
   effects::RenderedFrame cpu, gl;
   const BufferComparison& Get(const std::string& name) const;  // SOFTMOL_CHECK-fails if absent
 };

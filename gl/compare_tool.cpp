@@ -5,7 +5,6 @@
 //                      [--ssaa N] [--threads N] [--repeat N] [--diff PREFIX]
 // Set LP_NUM_THREADS=N as well to give llvmpipe the same thread count as the CPU backend.
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -16,6 +15,7 @@
 
 #include <tbb/global_control.h>
 
+#include "common/timer.h"
 #include "effects/frame_renderer.h"
 #include "gl/compare.h"
 #include "gl/context_egl.h"
@@ -29,7 +29,6 @@
 namespace {
 
 using namespace softmol;
-using Clock = std::chrono::steady_clock;
 
 struct Args {
   std::string molecule, style = "spacefill", diffPrefix;
@@ -146,10 +145,10 @@ int main(int argc, char** argv) {
       for (int i = 0; i < a.repeat; ++i) {
         auto t0 = Clock::now();
         effects::RenderFrame(scene, camera, options, f, &resources);
-        cpuMs.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+        cpuMs.push_back(MsSince(t0));
         t0 = Clock::now();
         const gl::GlFrameStats s = renderer.RenderFrame(scene, camera, options, f);
-        glMs.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+        glMs.push_back(MsSince(t0));
         glDrawMs.push_back(s.gbufferMs + s.shadingMs);
         glSetupMs.push_back(s.setupMs + s.uploadMs);
         glGbufferMs.push_back(s.gbufferMs);

@@ -2,11 +2,11 @@
 // effects/frame_renderer.cpp and times them (each timed pass ends with glFinish).
 #include "gl/frame_renderer.h"
 
-#include <chrono>
 #include <stdexcept>
 #include <string>
 
 #include "common/check.h"
+#include "common/timer.h"
 #include "gl/detail/passes.h"
 #include "gl/gl_api.h"
 
@@ -15,16 +15,13 @@ namespace softmol::gl {
 struct FrameRenderer::Impl {
   detail::TileKernelPass tileKernel;
   detail::ShadingPass shading;
+  detail::OutlinesPass outlines;
   detail::GBufferTargets gbuffer;
+  std::vector<float> outline;  // the outline pass's strengths, read back for the shading pass
   raster::GBuffer samples;  // read-back scratch for the AOVs
 };
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double Ms(Clock::time_point a, Clock::time_point b) {
-  return std::chrono::duration<double, std::milli>(b - a).count();
-}
 
 // A GL error is a bug in the mirror or a driver limit (e.g. a storage buffer larger than
 // GL_MAX_SHADER_STORAGE_BLOCK_SIZE): fail loudly rather than compare garbage.
@@ -50,9 +47,9 @@ GlFrameStats DrawGBuffer(FrameRenderer::Impl& m, const raster::PrimitiveScene& s
   glFinish();
   CheckGl("the G-buffer pass");
   const auto t3 = Clock::now();
-  s.setupMs = Ms(t0, t1);
-  s.uploadMs = Ms(t1, t2);
-  s.gbufferMs = Ms(t2, t3);
+  s.setupMs = MsBetween(t0, t1);
+  s.uploadMs = MsBetween(t1, t2);
+  s.gbufferMs = MsBetween(t2, t3);
   return s;
 }
 
@@ -61,11 +58,13 @@ GlFrameStats DrawGBuffer(FrameRenderer::Impl& m, const raster::PrimitiveScene& s
 FrameRenderer::FrameRenderer() : impl_(std::make_unique<Impl>()) {
   impl_->tileKernel.Create();
   impl_->shading.Create();
+  impl_->outlines.Create();
 }
 
 FrameRenderer::~FrameRenderer() {
   impl_->tileKernel.Release();
   impl_->shading.Release();
+  impl_->outlines.Release();
   impl_->gbuffer.Release();
 }
 
@@ -79,8 +78,13 @@ GlFrameStats FrameRenderer::RenderGBuffer(const raster::PrimitiveScene& scene,
   const auto t0 = Clock::now();
   detail::ReadBack(impl_->gbuffer, channels, out);
   CheckGl("the G-buffer read-back");
-  s.readbackMs = Ms(t0, Clock::now());
+  s.readbackMs = MsBetween(t0, Clock::now());
   return s;
+}
+
+bool Mirrors(effects::PassId pass) {
+  using effects::PassId;
+  return pass == PassId::kGBuffer || pass == PassId::kOutlines || pass == PassId::kShading || pass == PassId::kAovs;
 }
 
 GlFrameStats FrameRenderer::RenderFrame(const raster::PrimitiveScene& scene,
@@ -88,39 +92,65 @@ GlFrameStats FrameRenderer::RenderFrame(const raster::PrimitiveScene& scene,
                                         const effects::RenderOptions& o,
                                         effects::RenderedFrame& f, raster::GBuffer* samples) {
   SOFTMOL_CHECK(o.ssaa >= 1 && o.ssaa <= 4);
+  const std::vector<effects::PlannedPass> plan = effects::PlanPasses(o);
   const auto t0 = Clock::now();
   raster::Camera cam = camera;
   cam.width = camera.width * o.ssaa;
   cam.height = camera.height * o.ssaa;
-  raster::FrameOptions fo;
-  fo.channels = effects::RequiredChannels(o);
-  fo.contourWidth = o.contourWidth;
-  fo.contourDepthAware = o.contourDepthAware;
-  fo.contourDepthScale = o.contourDepthScale;
-  fo.nearClip = o.nearClip;
-  const uint32_t channels = fo.channels;
-  GlFrameStats s = DrawGBuffer(*impl_, scene, cam, fo);
-  const auto t1 = Clock::now();
   f.passes.clear();
-  f.passes.push_back({"gl gbuffer", 0.0, Ms(t0, t1)});
   f.width = camera.width;
   f.height = camera.height;
-
-  auto t2 = t1;
-  if (o.color) {
-    // Lines, caps and the depth cue need only the G-buffer; the CPU-computed buffers (shadow,
-    // outline, halo, AO) are not mirrored, so their spans stay empty.
-    const effects::ShadeInputs inputs = effects::MakeShadeInputs(o, scene, cam);
-    impl_->shading.Run(impl_->gbuffer, o.ssaa, o.shading, effects::Backdrop{o.background, o.transparent},
-                       &inputs);
-    glFinish();
-    CheckGl("the shading pass");
-    t2 = Clock::now();
-    s.shadingMs = Ms(t1, t2);
-    f.passes.push_back({"gl shading", Ms(t0, t1), s.shadingMs});
+  GlFrameStats s;
+  uint32_t channels = 0;
+  auto passStart = t0;
+  for (const effects::PlannedPass& pass : plan) {
+    SOFTMOL_CHECK(Mirrors(pass.id));
+    if (pass.id == effects::PassId::kGBuffer) {
+      raster::FrameOptions fo;
+      fo.channels = channels = effects::GBufferChannels(plan);
+      fo.contourWidth = o.contourWidth;
+      fo.contourDepthAware = o.contourDepthAware;
+      fo.contourDepthScale = o.contourDepthScale;
+      fo.nearClip = o.nearClip;
+      s = DrawGBuffer(*impl_, scene, cam, fo);
+    } else if (pass.id == effects::PassId::kOutlines) {
+      // Read back for the shading pass (which uploads its inputs) and for the comparison.
+      impl_->outlines.Run(impl_->gbuffer, cam, o.outline);
+      impl_->outlines.ReadBack(impl_->outline);
+      CheckGl("the outline pass");
+    } else if (pass.id == effects::PassId::kShading) {
+      // Lines, caps and the depth cue need only the G-buffer; outlines come from their pass.
+      effects::ShadeInputs inputs = effects::MakeShadeInputs(o, scene, cam);
+      if (o.outlines) inputs.outline = impl_->outline;
+      impl_->shading.Run(impl_->gbuffer, o.ssaa, o.shading, effects::Backdrop{o.background, o.transparent},
+                         &inputs);
+      glFinish();
+      CheckGl("the shading pass");
+    } else {
+      continue;  // the AOVs are taken from the read-back below
+    }
+    const auto passEnd = Clock::now();
+    if (pass.id == effects::PassId::kShading) s.shadingMs = MsBetween(passStart, passEnd);
+    f.passes.push_back({std::string("gl ") + pass.name, MsBetween(t0, passStart), MsBetween(passStart, passEnd), pass.reads,
+                        pass.writes});
+    passStart = passEnd;
   }
+  ReadBackFrame(o, channels, f, samples);
+  const auto t3 = Clock::now();
+  s.readbackMs = MsBetween(passStart, t3);
+  f.passes.push_back({"gl readback", MsBetween(t0, passStart), s.readbackMs});
+  f.totalMs = MsBetween(t0, t3);
+  f.rasterStats = raster::FrameStats{};
+  f.rasterStats.setupMs = s.setupMs;
+  f.rasterStats.primitivesSetUp = scene.size();
+  return s;
+}
 
-  // Read-back: colour, then the sample G-buffer when AOVs or the caller want it.
+const std::vector<float>& FrameRenderer::Outline() const { return impl_->outline; }
+
+// Read-back: colour, then the sample G-buffer when AOVs or the caller want it.
+void FrameRenderer::ReadBackFrame(const effects::RenderOptions& o, uint32_t channels, effects::RenderedFrame& f,
+                                  raster::GBuffer* samples) {
   if (o.color) impl_->shading.ReadBack(f.rgba);
   else f.rgba.clear();
   const size_t n = size_t(f.width) * size_t(f.height);
@@ -129,10 +159,12 @@ GlFrameStats FrameRenderer::RenderFrame(const raster::PrimitiveScene& scene,
   f.normalY.assign(o.aovs & effects::kAovNormal ? n : 0, 0.0f);
   f.normalZ.assign(o.aovs & effects::kAovNormal ? n : 0, 0.0f);
   f.id.assign(o.aovs & effects::kAovId ? n : 0, 0u);
+  // No AO pass is mirrored: the AO AOV is open everywhere, as the CPU's is without AO.
+  f.ao.assign(o.aovs & effects::kAovAo ? n : 0, 1.0f);
   raster::GBuffer& g = samples ? *samples : impl_->samples;
   if (samples != nullptr || o.aovs != 0) detail::ReadBack(impl_->gbuffer, channels, g);
   if (o.aovs != 0) {
-    // The CPU's AOV rule (effects/frame_renderer.cpp): one representative sample per pixel,
+    // The CPU's AOV rule (effects/passes/aovs_pass.cpp): one representative sample per pixel,
     // (s/2, s/2), never averaged across a silhouette.
     const int ss = o.ssaa;
     for (int row = 0; row < f.height; ++row) {
@@ -152,14 +184,6 @@ GlFrameStats FrameRenderer::RenderFrame(const raster::PrimitiveScene& scene,
     }
   }
   CheckGl("the read-back");
-  const auto t3 = Clock::now();
-  s.readbackMs = Ms(t2, t3);
-  f.passes.push_back({"gl readback", Ms(t0, t2), s.readbackMs});
-  f.totalMs = Ms(t0, t3);
-  f.rasterStats = raster::FrameStats{};
-  f.rasterStats.setupMs = s.setupMs;
-  f.rasterStats.primitivesSetUp = scene.size();
-  return s;
 }
 
 }  // namespace softmol::gl

@@ -2,8 +2,10 @@
 // setup (raster/setup.cpp) uploaded as storage buffers, the impostor pass (GLSL twin of the
 // tile kernel, one quad per primitive in the CPU's front-to-back order, ray-cast with the
 // shared raster/shared/*.inc formulas) into a float/integer G-buffer, then deferred shading
-// fused with the supersample resolve (effects/shared/blinn_phong.inc). Mirrored passes:
-// G-buffer (depth, normal, base colour, primitive id, surface coordinates) and shading.
+// fused with the supersample resolve (effects/shared/blinn_phong.inc). It runs the plan the
+// CPU runs (effects::PlanPasses). Mirrored passes: G-buffer (depth, normal, base colour,
+// primitive id, surface coordinates, contour lines, caps), Sobel outlines, shading (with the
+// depth cue) and the AOVs.
 // Needs a current gl::Context (gl/context_egl.h) on the calling thread.
 #pragma once
 
@@ -11,6 +13,7 @@
 #include <memory>
 
 #include "effects/frame_renderer.h"
+#include "effects/pass_list.h"
 #include "raster/camera.h"
 #include "raster/gbuffer.h"
 #include "raster/primitives.h"
@@ -25,6 +28,10 @@ struct GlFrameStats {
   double readbackMs = 0;  // every buffer read back
   uint64_t primitivesDrawn = 0;
 };
+
+// True for the passes this mirror runs (effects/pass_list.h). The CLI refuses a plan holding
+// any other, naming the option that asked for it; RenderFrame checks it.
+bool Mirrors(effects::PassId pass);
 
 class FrameRenderer {
  public:
@@ -46,9 +53,15 @@ class FrameRenderer {
                            const effects::RenderOptions& options, effects::RenderedFrame& frame,
                            raster::GBuffer* samples = nullptr);
 
+  // The last frame's outline strengths (one per G-buffer sample, row 0 at the bottom), when
+  // its plan ran the outline pass.
+  const std::vector<float>& Outline() const;
+
   struct Impl;
 
  private:
+  void ReadBackFrame(const effects::RenderOptions& options, uint32_t channels, effects::RenderedFrame& frame,
+                     raster::GBuffer* samples);
   std::unique_ptr<Impl> impl_;
 };
 

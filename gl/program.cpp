@@ -40,14 +40,16 @@ uint32_t Compile(GLenum type, const std::string& path, const std::string& source
 }  // namespace
 
 const std::vector<std::string>& SharedFormulaFiles() {
-  static const std::vector<std::string> files = {
-      "raster/shared/quadratic.inc",     "raster/shared/attributes.inc",
-      "raster/shared/sphere_hit.inc",    "raster/shared/cylinder_hit.inc",
-      "raster/shared/ellipsoid_hit.inc", "effects/shared/blinn_phong.inc",
-      "effects/shared/compositing.inc",
-      // No GL pass calls these yet; they are here so the offline GLSL check compiles them.
-      "effects/shared/shadow_pcf.inc",   "effects/shared/sobel.inc",
-      "ao/shared/surface_maps.inc",      "ao/shared/cone_step.inc"};
+  // The .inc files of the one embedded list (gl/CMakeLists.txt SOFTMOL_GL_SOURCES), in its
+  // order, which is their dependency order.
+  static const std::vector<std::string> files = [] {
+    std::vector<std::string> f;
+    for (const detail::EmbeddedSource& s : detail::kEmbeddedSources) {
+      const std::string path = s.path;
+      if (path.size() > 4 && path.compare(path.size() - 4, 4, ".inc") == 0) f.push_back(path);
+    }
+    return f;
+  }();
   return files;
 }
 
@@ -105,6 +107,21 @@ uint32_t BuildProgram(const std::string& vertexPath, const std::string& fragment
     throw std::runtime_error("GLSL link error (" + vertexPath + " + " + fragmentPath + "):\n" + log);
   }
   return program;
+}
+
+void DrawFullscreen(uint32_t program, uint32_t fbo, int width, int height) {
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+  glViewport(0, 0, width, height);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  glUseProgram(program);
+  GLuint vao = 0;
+  glCreateVertexArrays(1, &vao);
+  glBindVertexArray(vao);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glBindVertexArray(0);
+  glDeleteVertexArrays(1, &vao);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
 }  // namespace softmol::gl

@@ -11,7 +11,7 @@
 namespace softmol::gl {
 
 // The shared formula files every pass gets, in dependency order (GLSL needs declarations
-// before use): quadratic, attributes, sphere, cylinder, ellipsoid hits, Blinn-Phong.
+// before use): the .inc files of gl/CMakeLists.txt's embedded list, in its order.
 const std::vector<std::string>& SharedFormulaFiles();
 
 // Text of an embedded file by its repository path ("gl/shaders/tile_kernel.frag"); throws
@@ -27,5 +27,9 @@ std::string StageSource(const std::string& passPath, const std::string& defines)
 // driver's log on failure. Needs a current context.
 uint32_t BuildProgram(const std::string& vertexPath, const std::string& fragmentPath,
                       const std::string& defines);
+
+// Runs `program` over every pixel of `fbo`'s width × height viewport (one triangle from
+// gl/shaders/fullscreen.vert; no depth test, no blending): the per-pixel passes.
+void DrawFullscreen(uint32_t program, uint32_t fbo, int width, int height);
 
 }  // namespace softmol::gl

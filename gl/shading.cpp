@@ -37,7 +37,7 @@ void ShadingPass::Run(const GBufferTargets& g, int ssaa, const effects::ShadingO
                       const effects::Backdrop& backdrop, const effects::ShadeInputs* shadeInputs) {
   const effects::ShadeInputs none;
   const effects::ShadeInputs& in = shadeInputs ? *shadeInputs : none;
-  effects::ValidateShadeInputs(in);
+  SOFTMOL_CHECK(effects::ValidShadeInputs(in));
   SOFTMOL_CHECK(ssaa >= 1 && g.width % ssaa == 0 && g.height % ssaa == 0);
   const int w = g.width / ssaa, h = g.height / ssaa;
   if (w != width || h != height || target == 0) {
@@ -122,18 +122,7 @@ void ShadingPass::Run(const GBufferTargets& g, int ssaa, const effects::ShadingO
   glBindTextureUnit(0, g.color[kAttNormal]);
   glBindTextureUnit(1, g.color[kAttBaseColor]);
   glBindTextureUnit(2, g.color[kAttPrimitiveId]);
-  glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-  glViewport(0, 0, w, h);
-  glDisable(GL_DEPTH_TEST);
-  glDisable(GL_BLEND);
-  glUseProgram(p);
-  GLuint vao = 0;
-  glCreateVertexArrays(1, &vao);
-  glBindVertexArray(vao);
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  glBindVertexArray(0);
-  glDeleteVertexArrays(1, &vao);
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  DrawFullscreen(p, fbo, w, h);
 }
 
 void ShadingPass::ReadBack(std::vector<float>& rgba) const {

@@ -99,7 +99,7 @@ size_t TileKernelPass::Prepare(const raster::PrimitiveScene& scene, const raster
                                const raster::FrameOptions& options,
                                raster::detail::FrameConstants& fc) {
   using namespace raster::detail;
-  raster::ValidateFrameOptions(options);
+  SOFTMOL_CHECK(raster::ValidFrameOptions(options));
   const ViewSetup view = MakeViewSetup(camera, scene, options);
   fc = MakeFrameConstants(view, options);
   SetupPrimitives(scene, view, setup, (options.channels & raster::kSurfaceCoord) != 0);

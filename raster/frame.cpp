@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <array>
 #include <bit>
-#include <chrono>
 #include <cstdint>
 #include <cmath>
 #include <cstring>
@@ -20,6 +19,7 @@
 #include <tbb/parallel_for.h>
 
 #include "common/check.h"
+#include "common/timer.h"
 #include "io/error.h"
 #include "raster/detail/setup.h"
 #include "raster/detail/tile.h"
@@ -41,11 +41,6 @@ FrameWorkspace::FrameWorkspace(FrameWorkspace&&) noexcept = default;
 FrameWorkspace& FrameWorkspace::operator=(FrameWorkspace&&) noexcept = default;
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double Ms(Clock::time_point a, Clock::time_point b) {
-  return std::chrono::duration<double, std::milli>(b - a).count();
-}
 
 // Fixed number of work chunks for compaction, sorting and binning, independent of the
 // thread count, so the bins (and so the output) are the same bytes for any number of threads.
@@ -160,18 +155,13 @@ void CopyOut(const detail::TileView& v, uint32_t ch, GBuffer& g) {
 #endif
 }
 
-void CheckOption(float value, const char* option, const char* what) {
-  if (!std::isfinite(value) || value < 0.0f)
-    throw io::InputError({option}, std::string(what) + " must be a finite number >= 0, got " +
-                                       std::to_string(value));
-}
+bool FiniteNonNegative(float v) { return std::isfinite(v) && v >= 0.0f; }
 
 }  // namespace
 
-void ValidateFrameOptions(const FrameOptions& o) {
-  CheckOption(o.contourWidth, "--contours", "the contour line width (Å)");
-  CheckOption(o.contourDepthScale, "--contour-depth-scale", "the contour depth scale");
-  CheckOption(o.nearClip, "--near-clip", "the near clipping distance (Å)");
+bool ValidFrameOptions(const FrameOptions& o) {
+  return FiniteNonNegative(o.contourWidth) && FiniteNonNegative(o.contourDepthScale) &&
+         FiniteNonNegative(o.nearClip);
 }
 
 FrameStats RenderGBuffer(const PrimitiveScene& scene, const Camera& camera,
@@ -181,7 +171,7 @@ FrameStats RenderGBuffer(const PrimitiveScene& scene, const Camera& camera,
                 std::has_single_bit(unsigned(options.tileSize)));
   SOFTMOL_CHECK(scene.size() <= detail::kIndexMask);
   SOFTMOL_CHECK(camera.width <= 32767 && camera.height <= 32767);  // BinEntry's int16 boxes
-  ValidateFrameOptions(options);
+  SOFTMOL_CHECK(ValidFrameOptions(options));
   FrameWorkspace local;
   FrameWorkspace::Impl& ws = workspace ? *workspace->impl : *local.impl;
   FrameStats stats;
@@ -310,9 +300,9 @@ FrameStats RenderGBuffer(const PrimitiveScene& scene, const Camera& camera,
     stats.tilesSkippedByDepth += k.skippedByDepth;
   }
   const auto t3 = Clock::now();
-  stats.setupMs = Ms(t0, t1);
-  stats.binningMs = Ms(t1, t2);
-  stats.rasterMs = Ms(t2, t3);
+  stats.setupMs = MsBetween(t0, t1);
+  stats.binningMs = MsBetween(t1, t2);
+  stats.rasterMs = MsBetween(t2, t3);
   return stats;
 }
 

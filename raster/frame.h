@@ -37,9 +37,10 @@ struct FrameOptions {
 // are ordered by their front hits to ~0.01 Å.
 inline constexpr float kCapEpsilon = 1.0f / 1024.0f;
 
-// Throws io::InputError naming the option for a bad contour width, depth scale or near clip
-// (negative, NaN or infinite). RenderGBuffer calls it.
-void ValidateFrameOptions(const FrameOptions& options);
+// False for a negative, NaN or infinite contour width, depth scale or near clip. Callers pass
+// validated options (the CLI checks each against its declaration, effects/pass_list.h);
+// RenderGBuffer checks this as an invariant.
+bool ValidFrameOptions(const FrameOptions& options);
 
 struct FrameStats {
   double setupMs = 0, binningMs = 0, rasterMs = 0;

@@ -1,10 +1,12 @@
 // gl/detail/passes.h — the GL passes behind gl::FrameRenderer, one file per CPU pass with the
-// same stem: gl/tile_kernel.cpp (↔ raster/tile_kernel*.cpp), gl/shading.cpp (↔ effects/shading.cpp).
+// same stem: gl/tile_kernel.cpp (↔ raster/tile_kernel*.cpp), gl/shading.cpp (↔ effects/shading.cpp),
+// gl/outlines.cpp (↔ effects/outlines.cpp).
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
+#include "effects/outlines.h"
 #include "effects/shading.h"
 #include "raster/camera.h"
 #include "raster/detail/setup.h"
@@ -40,7 +42,7 @@ struct TileKernelPass {
   size_t Prepare(const raster::PrimitiveScene& scene, const raster::Camera& camera,
                  uint32_t channels, raster::detail::FrameConstants& fc);
   // The same with the edge cueing of `options` (contour lines, near-plane capping) and
-  // options.channels; throws io::InputError for bad options (raster::ValidateFrameOptions).
+  // options.channels; options must be valid (raster::ValidFrameOptions).
   size_t Prepare(const raster::PrimitiveScene& scene, const raster::Camera& camera,
                  const raster::FrameOptions& options, raster::detail::FrameConstants& fc);
   void Upload();
@@ -62,6 +64,19 @@ struct ShadingPass {
            const effects::Backdrop& backdrop, const effects::ShadeInputs* shadeInputs = nullptr);
   // The target, top row first (RenderedFrame order).
   void ReadBack(std::vector<float>& rgba) const;
+};
+
+// Sobel silhouette and crease lines (↔ effects/outlines.cpp): one R32F strength per G-buffer
+// sample, from the depth, normal and primitive-id attachments.
+struct OutlinesPass {
+  uint32_t program = 0, fbo = 0, target = 0;
+  int width = 0, height = 0;
+  void Create();
+  void Release();
+  // `camera` is the G-buffer's (sample resolution); options must be valid.
+  void Run(const GBufferTargets& g, const raster::Camera& camera, const effects::OutlineOptions& options);
+  // One strength per sample, G-buffer order (row 0 at the bottom).
+  void ReadBack(std::vector<float>& strength) const;
 };
 
 }  // namespace softmol::gl::detail

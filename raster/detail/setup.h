@@ -31,7 +31,7 @@ ViewSetup MakeViewSetup(const Camera& camera, const PrimitiveScene& scene);
 FrameConstants MakeFrameConstants(const ViewSetup& view, uint32_t channels);
 // With the edge cueing of `options` (raster/frame.h): the contour width grows the boxes, a
 // near clip replaces the near plane and turns capping on. Options must be valid
-// (ValidateFrameOptions).
+// (ValidFrameOptions).
 ViewSetup MakeViewSetup(const Camera& camera, const PrimitiveScene& scene,
                         const FrameOptions& options);
 FrameConstants MakeFrameConstants(const ViewSetup& view, const FrameOptions& options);

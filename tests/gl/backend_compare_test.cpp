@@ -57,6 +57,9 @@ void ExpectWithinBounds(const std::string& scene, const std::vector<BufferCompar
       EXPECT_GE(b.FractionEqual(), kIdAgreement) << scene;
     } else if (b.name == "depth") {
       EXPECT_LE(b.maxDifference, kDepthMaxUlp) << scene;
+    } else if (b.name == "outline") {
+      // A pass of its own on the G-buffer: bit for bit wherever its 3×3 inputs are.
+      EXPECT_GE(b.FractionEqual(), kIdAgreement) << scene;
     } else if (b.name == "color (8-bit sRGB)") {
       EXPECT_GE(FractionWithin(b, 1), kColorAgreement) << scene;
     }
@@ -160,6 +163,27 @@ TEST_P(RealMolecules, EveryBufferWithinBounds) {
   const std::string name = std::string(m.file) + " style " + std::to_string(int(m.style));
   Print(name, r.buffers);
   ASSERT_GT(r.Get("primitive id").compared, 1000u) << "the molecule should cover the image";
+  ExpectWithinBounds(name, r.buffers);
+}
+
+// The Sobel outline pass mirrored: its strength plane and the colour it composites.
+TEST_P(RealMolecules, OutlinesWithinBounds) {
+  SOFTMOL_NEED_GL();
+  const MoleculeCase& m = GetParam();
+  io::Molecule mol = io::ReadMolecule(std::string(SOFTMOL_DATA_DIR) + "/" + m.file);
+  if (m.style == raster::Style::kBalls || m.style == raster::Style::kLicorice) io::ComputeDistanceBonds(mol);
+  raster::RepresentationOptions rep;
+  rep.style = m.style;
+  const raster::PrimitiveScene scene = raster::BuildRepresentation(mol, rep);
+  const raster::Camera camera = raster::DefaultCamera(scene, m.width, m.height);
+  effects::RenderOptions options;
+  options.ssaa = m.ssaa;
+  options.outlines = true;
+  const BackendReport r = CompareBackends(*test::State().renderer, scene, camera, options);
+  const std::string name = std::string(m.file) + " outlines, style " + std::to_string(int(m.style));
+  Print(name, r.buffers);
+  const BufferComparison& outline = r.Get("outline");
+  EXPECT_EQ(outline.compared, uint64_t(r.sampleWidth) * uint64_t(r.sampleHeight));
   ExpectWithinBounds(name, r.buffers);
 }
 

@@ -16,8 +16,8 @@ namespace {
 
 constexpr double kColorAgreement = 0.999;
 
-// Plain, and with the effects the GL mirror composites from its own G-buffer (contour lines,
-// near-plane caps, depth cue; il2's default camera is ~120 Å from its centre, so the clip cuts it).
+// Plain, and with the effects the GL mirror computes from its own G-buffer (contour lines,
+// near-plane caps, depth cue, Sobel outlines; il2's default camera is ~120 Å from its centre, so the clip cuts it).
 class CliBackend : public testing::TestWithParam<const char*> {};
 
 TEST_P(CliBackend, GlPngMatchesCpuPng) {
@@ -50,7 +50,7 @@ TEST_P(CliBackend, GlPngMatchesCpuPng) {
 
 INSTANTIATE_TEST_SUITE_P(Effects, CliBackend,
                          testing::Values("", "--contours 0.3 --contour-depth-aware --depth-cue 0.5",
-                                         "--near-clip 115 --contours"));
+                                         "--near-clip 115 --contours", "--outlines"));
 
 TEST(CliBackendErrors, UnknownBackendIsAnError) {
   const auto dir = softmol::test::ScratchDir("cli_backend_bad");

@@ -1,0 +1,89 @@
+// cli/command_params.h — a command's parameters (io/params.h) on the command line and in scene
+// files: one CLI11 option per declared parameter (its --help line made from the declaration:
+// help, value shape, default, grouped by the pass that reads it), then the scene file's keys
+// for whatever the command line left out, then every given value parsed into the command's
+// struct by the declaration's own parser. CLI11 only collects text, so a flag and a scene key
+// go through the same check and fail with the same message, naming the flag or the file and
+// key.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "io/params.h"
+
+namespace softmol::cli {
+
+// Where one parameter's text came from.
+struct GivenValue {
+  size_t param = 0;  // index in the table
+  std::string text;
+  io::SourceLocation where;
+};
+
+// Type-independent part: the declarations' names and shapes, and the values given.
+class ParamInputs {
+ public:
+  struct Shape {
+    std::string name;
+    std::string hint;  // the value's shape, shown where CLI11 shows a type
+    bool isSwitch = false, isPath = false;
+    std::string implicitValue;
+    char shortName = 0;
+  };
+  // Adds one option per shape to `command`, with `help[i]` as its description and `group[i]`.
+  void AddOptions(CLI::App& command, std::vector<Shape> shapes, const std::vector<std::string>& help,
+                  const std::vector<std::string>& group);
+  // After CLI11 parsed: the options given on the command line.
+  void CollectFlags();
+  // The settings of a scene file for the parameters not given as flags. Keys are parameter
+  // names (or "molecule", which the caller's positional takes); unknown keys are errors.
+  // Returns the scene's "molecule", resolved beside the scene, or "".
+  std::string ReadScene(const std::string& path);
+  const std::vector<GivenValue>& given() const { return given_; }
+  bool Given(const std::string& name) const;
+
+ private:
+  std::vector<Shape> shapes_;
+  std::vector<CLI::Option*> options_;
+  std::vector<std::string> texts_;  // CLI11's storage, one per parameter
+  std::vector<GivenValue> given_;
+};
+
+template <class Target>
+class CommandParams {
+ public:
+  explicit CommandParams(io::ParamTable<Target> table) : table_(std::move(table)) {}
+
+  // One CLI11 option per parameter; --help shows the default read from `defaults`.
+  void AddTo(CLI::App& command, const Target& defaults = Target()) {
+    std::vector<ParamInputs::Shape> shapes;
+    std::vector<std::string> help, group;
+    for (const io::Param<Target>& p : table_) {
+      shapes.push_back({p.name, p.hint, p.isSwitch, p.isPath, p.implicitValue, p.shortName});
+      std::string line = p.help;
+      const std::string def = p.get(defaults);
+      if (!p.isSwitch && !def.empty()) line += " (default " + def + ")";
+      help.push_back(line);
+      group.push_back(p.group);
+    }
+    inputs_.AddOptions(command, std::move(shapes), help, group);
+  }
+
+  ParamInputs& inputs() { return inputs_; }
+  const io::ParamTable<Target>& table() const { return table_; }
+
+  // Every given value, in table order (flags first when both are somehow given); throws
+  // io::InputError at the value's origin.
+  void Apply(Target& target) const {
+    for (const GivenValue& v : inputs_.given()) table_[v.param].set(target, v.text, v.where);
+  }
+
+ private:
+  io::ParamTable<Target> table_;
+  ParamInputs inputs_;
+};
+
+}  // namespace softmol::cli

@@ -1,0 +1,48 @@
+// effects/passes/gbuffer_pass.cpp — the impostor pass (raster/frame.h): every primitive
+// ray-cast into the G-buffer, with contour lines and near-plane caps drawn by the fragment
+// kernels themselves (Tarini et al. §5.1, §5.3). Always runs; writes only the channels that
+// the kept passes read.
+#include "effects/passes/units.h"
+
+namespace softmol::effects {
+namespace {
+
+void RunGBuffer(FrameContext& c) {
+  const RenderOptions& o = c.options;
+  raster::FrameOptions fo;
+  fo.tileSize = o.tileSize;
+  fo.channels = GBufferChannels(c.plan);
+  fo.contourWidth = o.contourWidth;
+  fo.contourDepthAware = o.contourDepthAware;
+  fo.contourDepthScale = o.contourDepthScale;
+  fo.nearClip = o.nearClip;
+  c.frame.rasterStats = raster::RenderGBuffer(c.scene, c.camera, fo, c.res.gbuffer, &c.res.workspace);
+}
+
+io::ParamTable<RenderOptions> GBufferParams() {
+  using io::ChoiceParam, io::RealParam, io::SwitchParam;
+  io::ParamTable<RenderOptions> t = {
+      ChoiceParam<RenderOptions>("tile-size", [](auto& o) -> auto& { return o.tileSize; },
+                                 std::vector<std::pair<std::string, int>>{{"8", 8}, {"16", 16}, {"32", 32}, {"64", 64}, {"128", 128}},
+                                 "Raster tile size in pixels", "gbuffer"),
+      RealParam<RenderOptions>("contours", [](auto& o) -> auto& { return o.contourWidth; }, {0.0, 100.0}, "Å",
+                               "Contour lines around atoms and bonds, WIDTH Å (Tarini §5.1); 0 = off, 0.3 when given alone",
+                               "gbuffer"),
+      SwitchParam<RenderOptions>("contour-depth-aware", [](auto& o) -> auto& { return o.contourDepthAware; },
+                                 "Thin contour lines where the depth step behind them is small", "gbuffer"),
+      RealParam<RenderOptions>("near-clip", [](auto& o) -> auto& { return o.nearClip; }, {0.0, 1e9}, "Å",
+                               "Cut the molecule at this distance from the eye, capping cut atoms (Tarini §5.3); 0 = off",
+                               "gbuffer"),
+  };
+  t[1].implicitValue = "0.3";
+  return t;
+}
+
+uint64_t GBufferReads(const RenderOptions&) { return kBufScene; }
+
+}  // namespace
+
+extern const PassUnit kGBufferPass = {PassId::kGBuffer, "gbuffer", "", /*perSample=*/true, Always,
+                                      GBufferReads, kBufGBuffer, RunGBuffer, GBufferParams};
+
+}  // namespace softmol::effects

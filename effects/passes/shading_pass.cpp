@@ -1,0 +1,60 @@
+// effects/passes/shading_pass.cpp — deferred shading (Blinn-Phong with AO and shadows, Sigg
+// et al. 2006 §4) fused with the compositing of every per-sample effect and the supersample
+// resolve; the order of the steps is in effects/shading.h.
+#include "effects/passes/units.h"
+
+namespace softmol::effects {
+namespace {
+
+void RunShading(FrameContext& c) {
+  const RenderOptions& o = c.options;
+  ShadeInputs in = MakeShadeInputs(o, c.scene, c.camera);
+  in.ambientOcclusion = c.res.ao;
+  if (o.shadows) in.shadow = c.res.shadow;
+  if (o.outlines) in.outline = c.res.outline;
+  if (o.depthHalos) in.halo = c.res.depthHalo;
+  RenderedFrame& f = c.frame;
+  f.rgba.resize(4 * size_t(f.width) * size_t(f.height));  // every element is written: no need to clear
+  ShadeAndResolve(c.res.gbuffer, o.ssaa, o.shading, Backdrop{o.background, o.transparent}, in, f.rgba);
+}
+
+bool ColorWanted(const RenderOptions& o) { return o.color; }
+
+uint64_t ShadingReads(const RenderOptions& o) {
+  uint64_t reads = kBufNormal | kBufBaseColor | kBufPrimitiveId;
+  if (o.ao != AoMode::kNone) reads |= kBufAo;
+  if (o.shadows) reads |= kBufShadow;
+  if (o.outlines) reads |= kBufOutline;
+  if (o.depthHalos) reads |= kBufDepthHalo;
+  if (o.contourWidth > 0) reads |= kBufLine;
+  if (o.nearClip > 0) reads |= kBufCapped | kBufDepth;  // caps open, AO lightened near the plane
+  if (o.depthCue > 0) reads |= kBufDepth;
+  return reads;
+}
+
+io::ParamTable<RenderOptions> ShadingParams() {
+  using io::RealParam, io::SwitchParam;
+  io::ParamTable<RenderOptions> t = {
+      ColorParam<RenderOptions>("background", [](auto& o) -> auto& { return o.background; }, "Background colour",
+                                "shading"),
+      SwitchParam<RenderOptions>("transparent", [](auto& o) -> auto& { return o.transparent; },
+                                 "Transparent background (alpha 0)", "shading"),
+      ColorParam<RenderOptions>("contour-color", [](auto& o) -> auto& { return o.contourColor; },
+                                "Contour line colour", "shading"),
+      RealParam<RenderOptions>("depth-cue", [](auto& o) -> auto& { return o.depthCue; }, {0.0, 1.0}, "",
+                               "Fade toward the fog colour with depth, STRENGTH at the back of the molecule; 0 = off, "
+                               "0.5 when given alone",
+                               "shading"),
+      OptionalColorParam<RenderOptions>("fog-color", [](auto& o) -> auto& { return o.fogColor; },
+                                        "Depth-cue colour (default: the background)", "shading"),
+  };
+  t[3].implicitValue = "0.5";
+  return t;
+}
+
+}  // namespace
+
+extern const PassUnit kShadingPass = {PassId::kShading, "shading", "", /*perSample=*/true, ColorWanted,
+                                      ShadingReads, kBufColor, RunShading, ShadingParams};
+
+}  // namespace softmol::effects
