@@ -13,7 +13,8 @@ add_library(softmol::oiio ALIAS softmol_oiio)
 target_link_libraries(softmol_oiio INTERFACE PkgConfig::OIIO)
 find_package(CLI11 CONFIG REQUIRED)           # libcli11-dev
 find_package(nlohmann_json CONFIG REQUIRED)   # nlohmann-json3-dev
-find_package(ZLIB REQUIRED)                   # zlib1g-dev (gemmi's gzip input)
+find_package(ZLIB REQUIRED)                   # zlib1g-dev (gemmi's gzip input, the PNG encoder)
+find_package(PNG REQUIRED)                    # libpng-dev (reading PNG; the bench's reference encoder)
 
 # gemmi-dev is header-only in Debian 12 and ships no CMake config.
 find_path(GEMMI_INCLUDE_DIR gemmi/mmread.hpp REQUIRED)
