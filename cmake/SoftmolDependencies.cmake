@@ -5,7 +5,8 @@ find_package(glm CONFIG REQUIRED)             # libglm-dev
 find_package(TBB CONFIG REQUIRED)             # libtbb-dev
 find_package(hwy CONFIG REQUIRED)             # libhwy-dev (Highway 1.0.3)
 # libopenimageio-dev: its CMake config names /usr/include/opencv4 (absent without OpenCV),
-# so use its pkg-config file instead.
+# so use its pkg-config file instead. Only the module io/softmol_oiio.so links it (start-up:
+# OpenImageIO brings ~260 shared libraries into a process).
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(OIIO REQUIRED IMPORTED_TARGET OpenImageIO)
 add_library(softmol_oiio INTERFACE)
