@@ -76,7 +76,9 @@ TEST(CliOutput, FullDiskExitsNonZeroAndLeavesNothing) {
     EXPECT_EQ(r.exitCode, 2) << name << ": " << r.err;
     EXPECT_NE(r.err.find(out), std::string::npos) << r.err;
     // zlib's PNG path reports errno; OpenEXR words it its own way.
-    if (name == "full.png") EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << r.err;
+    if (name == "full.png") {
+      EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << r.err;
+    }
     EXPECT_TRUE(Outputs(disk.dir).empty()) << name << " left " << Outputs(disk.dir).front();
   }
 }
@@ -127,7 +129,9 @@ TEST(CliOutput, SigtermWhileWritingLeavesNoTemporary) {
   if (sawTemporary) waitpid(pid, &status, 0);
   EXPECT_TRUE(Outputs(dir).empty() || Outputs(dir) == std::vector<std::string>{"big.png"})
       << "left " << Outputs(dir).front();
-  if (fs::exists(out)) EXPECT_EQ(io::ReadImage8(out).width, 6000);
+  if (fs::exists(out)) {
+    EXPECT_EQ(io::ReadImage8(out).width, 6000);
+  }
   if (!sawTemporary) GTEST_SKIP() << "the render finished before its temporary was seen";
   EXPECT_TRUE(WIFSIGNALED(status) || (WIFEXITED(status) && WEXITSTATUS(status) == 0));
 }
