@@ -1,10 +1,13 @@
 // gl/context_egl.cpp — EGL surfaceless display, OpenGL 4.5 core context, no default surface
-// (EGL_KHR_surfaceless_context). GL entry points come straight from libOpenGL (glvnd), whose
-// exports cover every core function, so no loader library is needed.
+// (EGL_KHR_surfaceless_context). libEGL.so.1 and libOpenGL.so.0 (glvnd) are opened here with
+// dlopen, on the first context, so that only `--backend gl` and the GL tests load them.
 #include "gl/context_egl.h"
+
+#include <dlfcn.h>
 
 #include <cstdlib>
 #include <cstring>
+#include <mutex>
 
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
@@ -13,6 +16,34 @@
 
 namespace softmol::gl {
 namespace {
+
+// The EGL 1.5 entry points used below, loaded from libEGL.so.1 (they hide the prototypes).
+#define SOFTMOL_EGL_FUNCTIONS(X)                                                        \
+  X(eglQueryString) X(eglGetProcAddress) X(eglInitialize) X(eglTerminate) X(eglBindAPI) \
+  X(eglChooseConfig) X(eglCreateContext) X(eglMakeCurrent) X(eglDestroyContext)
+#define SOFTMOL_EGL_DECLARE(name) decltype(&::name) name = nullptr;
+SOFTMOL_EGL_FUNCTIONS(SOFTMOL_EGL_DECLARE)
+#undef SOFTMOL_EGL_DECLARE
+
+// Loads libEGL once; the reason it failed, or empty.
+std::string LoadEgl() {
+  static std::once_flag once;
+  static std::string failure;
+  std::call_once(once, [] {
+    void* lib = dlopen("libEGL.so.1", RTLD_NOW | RTLD_LOCAL);
+    if (lib == nullptr) {
+      const char* e = dlerror();
+      failure = std::string("cannot load libEGL.so.1: ") + (e ? e : "unknown error");
+      return;
+    }
+#define SOFTMOL_EGL_LOAD(name)                                            \
+  name = reinterpret_cast<decltype(name)>(dlsym(lib, #name));             \
+  if (name == nullptr && failure.empty()) failure = "libEGL.so.1 lacks " #name;
+    SOFTMOL_EGL_FUNCTIONS(SOFTMOL_EGL_LOAD)
+#undef SOFTMOL_EGL_LOAD
+  });
+  return failure;
+}
 
 bool HasExtension(const char* list, const char* name) {
   if (list == nullptr) return false;
@@ -30,6 +61,8 @@ bool RequireGl() {
 }
 
 std::unique_ptr<Context> Context::Create(std::string& why) {
+  why = LoadEgl();
+  if (!why.empty() || !LoadGlApi(why)) return nullptr;
   const char* clientExt = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
   if (!HasExtension(clientExt, "EGL_MESA_platform_surfaceless")) {
     why = "EGL has no EGL_MESA_platform_surfaceless (client extensions: " +

@@ -1,53 +1,106 @@
-// io/image_io.cpp — OpenImageIO writers and readers, with temp-then-rename.
+// io/image_io.cpp — PNG through softmol's encoder and libpng's reader; EXR and other formats
+// through the OpenImageIO module, loaded on first use; every write through TemporaryFile.
 #include "io/image_io.h"
 
-#include <OpenImageIO/imageio.h>
+#include <png.h>
 
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
-#include <filesystem>
 #include <memory>
 
+#include "io/atomic_file.h"
+#include "io/detail/oiio_loader.h"
 #include "io/error.h"
+#include "io/png_encoder.h"
 
 namespace softmol::io {
 namespace {
 
-namespace fs = std::filesystem;
+// ---- libpng reading ---------------------------------------------------------------------------
+// libpng reports errors by longjmp, so the two functions that call it hold no C++ object that
+// needs destroying; the caller owns everything.
+struct PngError {
+  char message[256] = "";
+};
 
-// The temporary sits beside the target (same file system, so rename is atomic) and keeps the
-// extension, because OpenImageIO picks the format from it.
-std::string TemporaryPath(const std::string& path) {
-  fs::path p(path);
-  std::string name = ".";  // appended piece by piece: GCC 12 misreports "." + std::string (-Wrestrict)
-  name += p.stem().string();
-  name += ".tmp";
-  name += p.extension().string();
-  return (p.parent_path() / name).string();
+void OnPngError(png_structp png, png_const_charp msg) {
+  auto* e = static_cast<PngError*>(png_get_error_ptr(png));
+  std::snprintf(e->message, sizeof e->message, "%s", msg);
+  png_longjmp(png, 1);
+}
+void OnPngWarning(png_structp, png_const_charp) {}
+
+// Reads the header and sets the transforms to 8-bit gray/GA/RGB/RGBA; 0 on error.
+int PngHeader(png_structp png, png_infop info, FILE* f, int* width, int* height, int* channels, int* passes) {
+  if (setjmp(png_jmpbuf(png))) return 0;
+  png_init_io(png, f);
+  png_read_info(png, info);
+  png_set_expand(png);  // palette -> RGB, gray < 8 bits -> 8, tRNS -> alpha
+  png_set_strip_16(png);
+  *passes = png_set_interlace_handling(png);
+  png_read_update_info(png, info);
+  *width = int(png_get_image_width(png, info));
+  *height = int(png_get_image_height(png, info));
+  *channels = int(png_get_channels(png, info));
+  return 1;
 }
 
-void Commit(const std::string& tmp, const std::string& path) {
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    throw InputError({path}, "cannot write the output file: " + ec.message());
-  }
+int PngRows(png_structp png, png_infop info, uint8_t* out, size_t rowBytes, int height, int passes) {
+  if (setjmp(png_jmpbuf(png))) return 0;
+  for (int pass = 0; pass < passes; ++pass)
+    for (int y = 0; y < height; ++y) png_read_row(png, out + size_t(y) * rowBytes, nullptr);
+  png_read_end(png, nullptr);
+  (void)info;
+  return 1;
 }
 
-void WriteWithSpec(const std::string& path, const OIIO::ImageSpec& spec, const void* data) {
-  const std::string tmp = TemporaryPath(path);
-  auto out = OIIO::ImageOutput::create(path);
-  if (!out) throw InputError({path}, "unsupported image format: " + OIIO::geterror());
-  bool ok = out->open(tmp, spec) && out->write_image(OIIO::TypeDesc::UNKNOWN, data);
-  ok = out->close() && ok;
-  if (!ok) {
-    const std::string why = out->geterror();
-    std::error_code ec;
-    fs::remove(tmp, ec);
-    throw InputError({path}, "cannot write the image: " + why);
-  }
-  Commit(tmp, path);
+struct PngReader {
+  PngError error;
+  png_structp png = nullptr;
+  png_infop info = nullptr;
+  ~PngReader() { png_destroy_read_struct(&png, info ? &info : nullptr, nullptr); }
+};
+
+Image8 ReadPng(const std::string& path, FILE* f) {
+  PngReader r;
+  r.png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &r.error, OnPngError, OnPngWarning);
+  if (r.png) r.info = png_create_info_struct(r.png);
+  if (!r.png || !r.info) throw std::bad_alloc();
+  Image8 img;
+  int passes = 1;
+  if (!PngHeader(r.png, r.info, f, &img.width, &img.height, &img.channels, &passes))
+    throw InputError({path}, std::string("cannot read the PNG: ") + r.error.message);
+  const size_t rowBytes = size_t(img.width) * size_t(img.channels);
+  img.pixels.resize(rowBytes * size_t(img.height));
+  if (!PngRows(r.png, r.info, img.pixels.data(), rowBytes, img.height, passes))
+    throw InputError({path}, std::string("cannot read the PNG: ") + r.error.message);
+  return img;
+}
+
+struct FileCloser {
+  void operator()(FILE* f) const { std::fclose(f); }
+};
+
+// ---- The OpenImageIO module -------------------------------------------------------------------
+struct ModuleImage {
+  const SoftmolOiioApi* api;
+  void* image;
+  ~ModuleImage() { api->close(image); }
+};
+
+ModuleImage OpenWithModule(const std::string& path) {
+  const SoftmolOiioApi& api = detail::OiioModule(path);
+  char err[512] = "";
+  void* image = api.open(path.c_str(), err, sizeof err);
+  if (image == nullptr) throw InputError({path}, std::string("cannot read the image: ") + err);
+  return ModuleImage{&api, image};
+}
+
+void ReadChannels(const ModuleImage& m, const std::string& path, int begin, int end, int type, void* out) {
+  char err[512] = "";
+  if (!m.api->read(m.image, begin, end, type, out, err, sizeof err))
+    throw InputError({path}, std::string("cannot read the image: ") + err);
 }
 
 }  // namespace
@@ -57,11 +110,10 @@ void WritePng(const std::string& path, int width, int height, int channels,
   if (width <= 0 || height <= 0 || (channels != 3 && channels != 4) ||
       pixels.size() != size_t(width) * size_t(height) * size_t(channels))
     throw InputError({path}, "internal error: inconsistent PNG image size");
-  OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::UINT8);
-  spec.attribute("oiio:ColorSpace", "sRGB");
-  // The pixels already hold straight (unassociated) alpha: OpenImageIO must not divide again.
-  if (channels == 4) spec.attribute("oiio:UnassociatedAlpha", 1);
-  WriteWithSpec(path, spec, pixels.data());
+  TemporaryFile file(path);  // first, so a bad output path is reported before the encoding
+  const std::vector<uint8_t> bytes = EncodePng(width, height, channels, pixels.data());
+  file.Write(bytes.data(), bytes.size());
+  file.Commit();
 }
 
 void WriteExr(const std::string& path, const ImageFile& image) {
@@ -69,26 +121,22 @@ void WriteExr(const std::string& path, const ImageFile& image) {
   if (image.width <= 0 || image.height <= 0 || image.channels.empty())
     throw InputError({path}, "internal error: empty EXR image");
   const int nc = int(image.channels.size());
-  OIIO::ImageSpec spec(image.width, image.height, nc, OIIO::TypeDesc::FLOAT);
-  spec.channelnames.clear();
-  spec.channelformats.clear();
-  spec.alpha_channel = -1;
-  spec.z_channel = -1;
+  std::vector<const char*> names;
+  std::vector<unsigned char> isU32;
+  int alpha = -1, z = -1;
   for (int c = 0; c < nc; ++c) {
     const ImageChannel& ch = image.channels[size_t(c)];
-    const bool isUint = !ch.ids.empty();
-    if ((isUint ? ch.ids.size() : ch.values.size()) != n)
+    if ((!ch.ids.empty() ? ch.ids.size() : ch.values.size()) != n)
       throw InputError({path}, "internal error: channel " + ch.name + " has the wrong size");
-    spec.channelnames.push_back(ch.name);
-    spec.channelformats.push_back(isUint ? OIIO::TypeDesc::UINT32 : OIIO::TypeDesc::FLOAT);
-    if (ch.name == "A") spec.alpha_channel = c;
-    if (ch.name == "Z") spec.z_channel = c;
+    names.push_back(ch.name.c_str());
+    isU32.push_back(ch.ids.empty() ? 0 : 1);
+    if (ch.name == "A") alpha = c;
+    if (ch.name == "Z") z = c;
   }
-  spec.attribute("compression", "zip");
-  spec.attribute("oiio:ColorSpace", "Linear");
   // OpenEXR's writer stamps the current time (capDate) unless DateTime is set; an empty one
   // leaves it out, so the same render gives the same bytes (DESIGN.md, determinism).
-  spec.attribute("DateTime", "");
+  const char* attrNames[] = {"compression", "oiio:ColorSpace", "DateTime"};
+  const char* attrValues[] = {"zip", "Linear", ""};
   // Every channel is 4 bytes, so the native (per-channel format) layout is 4·nc bytes a pixel.
   std::vector<uint32_t> native(n * size_t(nc));
   for (int c = 0; c < nc; ++c) {
@@ -100,44 +148,49 @@ void WriteExr(const std::string& path, const ImageFile& image) {
       native[i * size_t(nc) + size_t(c)] = bits;
     }
   }
-  WriteWithSpec(path, spec, native.data());
+  const SoftmolOiioApi& api = detail::OiioModule(path);
+  TemporaryFile file(path);
+  file.CloseForExternalWriter();  // OpenImageIO opens the temporary by name
+  const SoftmolOiioWrite w{path.c_str(), file.temporaryPath().c_str(), image.width, image.height, nc,
+                           names.data(), isU32.data(), alpha, z, attrNames, attrValues, 3, native.data()};
+  char err[512] = "";
+  if (!api.write(&w, err, sizeof err)) throw InputError({path}, std::string("cannot write the image: ") + err);
+  file.Commit();
 }
 
 Image8 ReadImage8(const std::string& path) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw InputError({path}, "cannot read the image: " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = in->spec();
+  std::unique_ptr<FILE, FileCloser> f(std::fopen(path.c_str(), "rb"));
+  if (!f) throw InputError({path}, std::string("cannot read the image: ") + std::strerror(errno));
+  unsigned char sig[8] = {};
+  if (std::fread(sig, 1, 8, f.get()) == 8 && png_sig_cmp(sig, 0, 8) == 0) {
+    std::rewind(f.get());
+    return ReadPng(path, f.get());
+  }
+  f.reset();
+  const ModuleImage m = OpenWithModule(path);
   Image8 img;
-  img.width = spec.width;
-  img.height = spec.height;
-  img.channels = spec.nchannels;
-  img.pixels.resize(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels));
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, img.pixels.data()))
-    throw InputError({path}, "cannot read the image: " + in->geterror());
+  m.api->info(m.image, &img.width, &img.height, &img.channels);
+  img.pixels.resize(size_t(img.width) * size_t(img.height) * size_t(img.channels));
+  ReadChannels(m, path, 0, img.channels, kSoftmolOiioU8, img.pixels.data());
   return img;
 }
 
 ImageFile ReadExr(const std::string& path) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw InputError({path}, "cannot read the image: " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = in->spec();
+  const ModuleImage m = OpenWithModule(path);
   ImageFile img;
-  img.width = spec.width;
-  img.height = spec.height;
-  const size_t n = size_t(spec.width) * size_t(spec.height);
-  for (int c = 0; c < spec.nchannels; ++c) {
+  int nchannels = 0;
+  m.api->info(m.image, &img.width, &img.height, &nchannels);
+  const size_t n = size_t(img.width) * size_t(img.height);
+  for (int c = 0; c < nchannels; ++c) {
     ImageChannel ch;
-    ch.name = spec.channelnames[size_t(c)];
-    const bool isUint = spec.channelformat(c) == OIIO::TypeDesc::UINT32;
-    bool ok;
-    if (isUint) {
+    ch.name = m.api->channelName(m.image, c);
+    if (m.api->channelIsU32(m.image, c)) {
       ch.ids.resize(n);
-      ok = in->read_image(0, 0, c, c + 1, OIIO::TypeDesc::UINT32, ch.ids.data());
+      ReadChannels(m, path, c, c + 1, kSoftmolOiioU32, ch.ids.data());
     } else {
       ch.values.resize(n);
-      ok = in->read_image(0, 0, c, c + 1, OIIO::TypeDesc::FLOAT, ch.values.data());
+      ReadChannels(m, path, c, c + 1, kSoftmolOiioF32, ch.values.data());
     }
-    if (!ok) throw InputError({path}, "cannot read channel " + ch.name + ": " + in->geterror());
     img.channels.push_back(std::move(ch));
   }
   return img;

@@ -1,7 +1,15 @@
-// io/image_io.h — writes rendered images through OpenImageIO: PNG (8-bit sRGB, RGB or RGBA)
-// and OpenEXR (linear float colour plus AOV channels: Z, N.x N.y N.z, AO as float32, id as
-// uint32). Files are written to a temporary name and renamed at the end, so a failure never
-// leaves a half-written image. Images here are stored top row first (file order).
+// io/image_io.h — writes and reads rendered images: PNG (8-bit sRGB, RGB or RGBA) through
+// softmol's parallel encoder (io/png_encoder.h) and libpng's reader; OpenEXR (linear float
+// colour plus AOV channels: Z, N.x N.y N.z, AO as float32, id as uint32) and every other format
+// through OpenImageIO, in a module (softmol_oiio.so) that only a process needing it loads.
+// Images here are stored top row first (file order).
+//
+// Every write goes through io::TemporaryFile (io/atomic_file.h): a unique temporary beside the
+// output, every call checked, rename() as the only step that makes the output appear; nothing is
+// left under either name on failure or on SIGINT/SIGTERM/SIGHUP. Errors (io::InputError) name
+// the output as given. An output that is a symlink is written through, as `cp` does: the file
+// the link points to is replaced and the link stays. An output that is a directory, a device or
+// a FIFO, or in a folder that does not exist, is refused with a message saying so.
 #pragma once
 
 #include <cstdint>
@@ -29,7 +37,8 @@ void WritePng(const std::string& path, int width, int height, int channels,
 // OpenEXR with every channel of `image` (mixed float32 / uint32), zip-compressed.
 void WriteExr(const std::string& path, const ImageFile& image);
 
-// Reads any image OpenImageIO knows as 8-bit interleaved pixels (for tests and `diff`).
+// Reads an image as 8-bit interleaved pixels (for tests and `diff`): a PNG through libpng, with
+// its own channel count and straight alpha; any other format through the OpenImageIO module.
 struct Image8 {
   int width = 0, height = 0, channels = 0;
   std::vector<uint8_t> pixels;

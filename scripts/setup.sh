@@ -8,7 +8,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libglm-dev libopenimageio-dev libtbb-dev libbenchmark-dev libgtest-dev
   gemmi-dev tao-pegtl-dev   # gemmi's mmCIF parser includes tao/pegtl.hpp but does not depend on it
-  libhwy-dev libcli11-dev nlohmann-json3-dev zlib1g-dev
+  libhwy-dev libcli11-dev nlohmann-json3-dev zlib1g-dev libpng-dev
   clang libclang-rt-14-dev   # libFuzzer targets (scripts/fuzz.sh)
   libegl-dev libopengl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri glslang-tools  # gl/ mirror (llvmpipe)
 )
