@@ -50,8 +50,8 @@ void PcfPattern(int count, int pretest, std::vector<float>& x, std::vector<float
   }
 }
 
-void BuildShadowMap(const raster::PrimitiveScene& scene, const raster::Camera& eyeCamera,
-                    glm::vec3 lightDirEye, const ShadowOptions& options, ShadowMap& map) {
+void SetUpShadowLight(const raster::PrimitiveScene& scene, const raster::Camera& eyeCamera,
+                      glm::vec3 lightDirEye, const ShadowOptions& options, ShadowMap& map) {
   SOFTMOL_CHECK(ValidShadowOptions(options));
   const raster::BoundingSphere b = scene.Bounds();
   const glm::dvec3 le(lightDirEye);
@@ -80,6 +80,13 @@ void BuildShadowMap(const raster::PrimitiveScene& scene, const raster::Camera& e
                                       : (a.y <= a.z ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1));
   cam.width = cam.height = options.mapSize;
   map.texel = float(raster::PixelScale(cam));
+}
+
+void BuildShadowMap(const raster::PrimitiveScene& scene, const raster::Camera& eyeCamera,
+                    glm::vec3 lightDirEye, const ShadowOptions& options, ShadowMap& map) {
+  SetUpShadowLight(scene, eyeCamera, lightDirEye, options, map);
+  if (!map.valid) return;
+  const raster::Camera& cam = map.light;
   raster::FrameOptions fo;
   fo.channels = raster::kDepth;  // §4: the shadow map is a depth buffer only
   raster::RenderGBuffer(scene, cam, fo, map.map, &map.workspace);

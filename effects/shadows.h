@@ -43,6 +43,11 @@ struct ShadowMap {
   bool valid = false;              // false: empty scene, every sample is lit
 };
 
+// The light's orthographic view framing `scene` (map.light, toLight, texel, valid), without
+// rendering it: what both backends render as the shadow map.
+void SetUpShadowLight(const raster::PrimitiveScene& scene, const raster::Camera& eyeCamera,
+                      glm::vec3 lightDirEye, const ShadowOptions& options, ShadowMap& map);
+
 // Renders the light's view of `scene`. `lightDirEye` points towards the light in the eye
 // space of `eyeCamera` (as ShadingOptions::lightDirection does; normalized here).
 void BuildShadowMap(const raster::PrimitiveScene& scene, const raster::Camera& eyeCamera,

@@ -211,8 +211,17 @@ BackendReport CompareBackends(FrameRenderer& renderer, const raster::PrimitiveSc
     r.buffers.push_back(CompareFloatChannel("normal", cpu, glSamples, normal));
   }
   if (cpu.channels & raster::kBaseColor) r.buffers.push_back(CompareBaseColor(cpu, glSamples));
-  if (!cpuResources.outline.empty() && options.outlines)
-    r.buffers.push_back(CompareSamplePlane("outline", cpuResources.outline, renderer.Outline(), cpu.width, cpu.height));
+  // The planes of the effect passes the plan ran.
+  const effects::ShadowMap& map = cpuResources.shadowMap;
+  if (options.shadows && map.valid)
+    r.buffers.push_back(CompareSamplePlane("shadow map", map.map.depth, renderer.Plane(effects::kBufShadowMap),
+                                           map.map.width, map.map.height));
+  if (options.shadows)
+    r.buffers.push_back(CompareSamplePlane("shadow", cpuResources.shadow, renderer.Plane(effects::kBufShadow), cpu.width,
+                                           cpu.height));
+  if (options.outlines)
+    r.buffers.push_back(CompareSamplePlane("outline", cpuResources.outline, renderer.Plane(effects::kBufOutline),
+                                           cpu.width, cpu.height));
   if (options.color) {
     r.buffers.push_back(CompareColorUlp(r.cpu.rgba, r.gl.rgba, r.cpu.width, r.cpu.height));
     r.buffers.push_back(CompareColor8(r.cpu.rgba, r.gl.rgba, r.cpu.width, r.cpu.height));

@@ -16,8 +16,11 @@ struct FrameRenderer::Impl {
   detail::TileKernelPass tileKernel;
   detail::ShadingPass shading;
   detail::OutlinesPass outlines;
+  detail::ShadowPass shadows;
   detail::GBufferTargets gbuffer;
-  std::vector<float> outline;  // the outline pass's strengths, read back for the shading pass
+  // Per-sample results read back, for the shading pass (which uploads its inputs) and for the
+  // comparison.
+  std::vector<float> outline, shadow;
   raster::GBuffer samples;  // read-back scratch for the AOVs
 };
 
@@ -59,12 +62,14 @@ FrameRenderer::FrameRenderer() : impl_(std::make_unique<Impl>()) {
   impl_->tileKernel.Create();
   impl_->shading.Create();
   impl_->outlines.Create();
+  impl_->shadows.Create();
 }
 
 FrameRenderer::~FrameRenderer() {
   impl_->tileKernel.Release();
   impl_->shading.Release();
   impl_->outlines.Release();
+  impl_->shadows.Release();
   impl_->gbuffer.Release();
 }
 
@@ -84,7 +89,8 @@ GlFrameStats FrameRenderer::RenderGBuffer(const raster::PrimitiveScene& scene,
 
 bool Mirrors(effects::PassId pass) {
   using effects::PassId;
-  return pass == PassId::kGBuffer || pass == PassId::kOutlines || pass == PassId::kShading || pass == PassId::kAovs;
+  return pass == PassId::kGBuffer || pass == PassId::kShadowMap || pass == PassId::kShadows ||
+         pass == PassId::kOutlines || pass == PassId::kShading || pass == PassId::kAovs;
 }
 
 GlFrameStats FrameRenderer::RenderFrame(const raster::PrimitiveScene& scene,
@@ -113,8 +119,14 @@ GlFrameStats FrameRenderer::RenderFrame(const raster::PrimitiveScene& scene,
       fo.contourDepthScale = o.contourDepthScale;
       fo.nearClip = o.nearClip;
       s = DrawGBuffer(*impl_, scene, cam, fo);
+    } else if (pass.id == effects::PassId::kShadowMap) {
+      impl_->shadows.RenderMap(impl_->tileKernel, scene, cam, o.shading.lightDirection, o.shadow);
+      glFinish();
+      CheckGl("the shadow map pass");
+    } else if (pass.id == effects::PassId::kShadows) {
+      impl_->shadows.Run(impl_->gbuffer, cam, o.shadow, impl_->shadow);
+      CheckGl("the shadow pass");
     } else if (pass.id == effects::PassId::kOutlines) {
-      // Read back for the shading pass (which uploads its inputs) and for the comparison.
       impl_->outlines.Run(impl_->gbuffer, cam, o.outline);
       impl_->outlines.ReadBack(impl_->outline);
       CheckGl("the outline pass");
@@ -122,6 +134,7 @@ GlFrameStats FrameRenderer::RenderFrame(const raster::PrimitiveScene& scene,
       // Lines, caps and the depth cue need only the G-buffer; outlines come from their pass.
       effects::ShadeInputs inputs = effects::MakeShadeInputs(o, scene, cam);
       if (o.outlines) inputs.outline = impl_->outline;
+      if (o.shadows) inputs.shadow = impl_->shadow;
       impl_->shading.Run(impl_->gbuffer, o.ssaa, o.shading, effects::Backdrop{o.background, o.transparent},
                          &inputs);
       glFinish();
@@ -146,7 +159,15 @@ GlFrameStats FrameRenderer::RenderFrame(const raster::PrimitiveScene& scene,
   return s;
 }
 
-const std::vector<float>& FrameRenderer::Outline() const { return impl_->outline; }
+const std::vector<float>& FrameRenderer::Plane(effects::FrameBuffer buffer) const {
+  static const std::vector<float> none;
+  switch (buffer) {
+    case effects::kBufOutline: return impl_->outline;
+    case effects::kBufShadow: return impl_->shadow;
+    case effects::kBufShadowMap: return impl_->shadows.light.map.depth;
+    default: return none;
+  }
+}
 
 // Read-back: colour, then the sample G-buffer when AOVs or the caller want it.
 void FrameRenderer::ReadBackFrame(const effects::RenderOptions& o, uint32_t channels, effects::RenderedFrame& f,

@@ -4,8 +4,8 @@
 // shared raster/shared/*.inc formulas) into a float/integer G-buffer, then deferred shading
 // fused with the supersample resolve (effects/shared/blinn_phong.inc). It runs the plan the
 // CPU runs (effects::PlanPasses). Mirrored passes: G-buffer (depth, normal, base colour,
-// primitive id, surface coordinates, contour lines, caps), Sobel outlines, shading (with the
-// depth cue) and the AOVs.
+// primitive id, surface coordinates, contour lines, caps), the shadow map and PCF, Sobel
+// outlines, shading (with the depth cue) and the AOVs.
 // Needs a current gl::Context (gl/context_egl.h) on the calling thread.
 #pragma once
 
@@ -53,9 +53,9 @@ class FrameRenderer {
                            const effects::RenderOptions& options, effects::RenderedFrame& frame,
                            raster::GBuffer* samples = nullptr);
 
-  // The last frame's outline strengths (one per G-buffer sample, row 0 at the bottom), when
-  // its plan ran the outline pass.
-  const std::vector<float>& Outline() const;
+  // One float plane the last frame's plan wrote, row 0 at the bottom: kBufOutline, kBufShadow
+  // (one per G-buffer sample), kBufShadowMap (the light's depth); empty for any other.
+  const std::vector<float>& Plane(effects::FrameBuffer buffer) const;
 
   struct Impl;
 

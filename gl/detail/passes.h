@@ -1,6 +1,6 @@
 // gl/detail/passes.h — the GL passes behind gl::FrameRenderer, one file per CPU pass with the
 // same stem: gl/tile_kernel.cpp (↔ raster/tile_kernel*.cpp), gl/shading.cpp (↔ effects/shading.cpp),
-// gl/outlines.cpp (↔ effects/outlines.cpp).
+// gl/outlines.cpp (↔ effects/outlines.cpp), gl/shadows.cpp (↔ effects/shadows.cpp).
 #pragma once
 
 #include <cstdint>
@@ -8,6 +8,7 @@
 
 #include "effects/outlines.h"
 #include "effects/shading.h"
+#include "effects/shadows.h"
 #include "raster/camera.h"
 #include "raster/detail/setup.h"
 #include "raster/gbuffer.h"
@@ -77,6 +78,23 @@ struct OutlinesPass {
   void Run(const GBufferTargets& g, const raster::Camera& camera, const effects::OutlineOptions& options);
   // One strength per sample, G-buffer order (row 0 at the bottom).
   void ReadBack(std::vector<float>& strength) const;
+};
+
+// Soft shadows (↔ effects/shadows.cpp): the light's depth map drawn by the tile-kernel pass,
+// then PCF with the pre-test, one R32F visibility per G-buffer sample.
+struct ShadowPass {
+  uint32_t program = 0, fbo = 0, target = 0;
+  int width = 0, height = 0;
+  GBufferTargets map;       // the light's depth
+  effects::ShadowMap light;  // its camera (effects::SetUpShadowLight) and the map read back
+  void Create();
+  void Release();
+  // The light's view of `scene` for the eye camera `eye` (the G-buffer's).
+  void RenderMap(TileKernelPass& kernel, const raster::PrimitiveScene& scene, const raster::Camera& eye,
+                 glm::vec3 lightDirEye, const effects::ShadowOptions& options);
+  // PCF of every sample of `g` (seen by `camera`), read back into `visibility` (G-buffer order).
+  void Run(const GBufferTargets& g, const raster::Camera& camera, const effects::ShadowOptions& options,
+           std::vector<float>& visibility);
 };
 
 }  // namespace softmol::gl::detail

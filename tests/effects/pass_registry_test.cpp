@@ -48,7 +48,9 @@ TEST(PassRegistry, EveryParameterIsDeclaredOnceAndReadsBackItsDefault) {
     const std::string text = p.get(defaults);
     p.set(o, text, io::FlagLocation(p.name));
     EXPECT_EQ(p.get(o), text) << p.name;
-    if (!p.implicitValue.empty()) EXPECT_NO_THROW(p.set(o, p.implicitValue, io::FlagLocation(p.name))) << p.name;
+    if (!p.implicitValue.empty()) {
+      EXPECT_NO_THROW(p.set(o, p.implicitValue, io::FlagLocation(p.name))) << p.name;
+    }
   }
   EXPECT_GE(params.size(), 25u);
 }

@@ -57,8 +57,9 @@ void ExpectWithinBounds(const std::string& scene, const std::vector<BufferCompar
       EXPECT_GE(b.FractionEqual(), kIdAgreement) << scene;
     } else if (b.name == "depth") {
       EXPECT_LE(b.maxDifference, kDepthMaxUlp) << scene;
-    } else if (b.name == "outline") {
-      // A pass of its own on the G-buffer: bit for bit wherever its 3×3 inputs are.
+    } else if (b.name == "outline" || b.name == "shadow" || b.name == "shadow map") {
+      // Passes of their own on the G-buffer (and the light's): bit for bit wherever their
+      // inputs are, so bounded as the ids are.
       EXPECT_GE(b.FractionEqual(), kIdAgreement) << scene;
     } else if (b.name == "color (8-bit sRGB)") {
       EXPECT_GE(FractionWithin(b, 1), kColorAgreement) << scene;
@@ -166,10 +167,10 @@ TEST_P(RealMolecules, EveryBufferWithinBounds) {
   ExpectWithinBounds(name, r.buffers);
 }
 
-// The Sobel outline pass mirrored: its strength plane and the colour it composites.
-TEST_P(RealMolecules, OutlinesWithinBounds) {
-  SOFTMOL_NEED_GL();
-  const MoleculeCase& m = GetParam();
+// The effect passes mirrored in GL: their planes (the shadow map, PCF visibility, Sobel
+// strength) and the colour they are composited into.
+void ExpectEffectWithinBounds(const MoleculeCase& m, void (*turnOn)(effects::RenderOptions&),
+                              std::initializer_list<const char*> planes) {
   io::Molecule mol = io::ReadMolecule(std::string(SOFTMOL_DATA_DIR) + "/" + m.file);
   if (m.style == raster::Style::kBalls || m.style == raster::Style::kLicorice) io::ComputeDistanceBonds(mol);
   raster::RepresentationOptions rep;
@@ -178,13 +179,28 @@ TEST_P(RealMolecules, OutlinesWithinBounds) {
   const raster::Camera camera = raster::DefaultCamera(scene, m.width, m.height);
   effects::RenderOptions options;
   options.ssaa = m.ssaa;
-  options.outlines = true;
+  turnOn(options);
   const BackendReport r = CompareBackends(*test::State().renderer, scene, camera, options);
-  const std::string name = std::string(m.file) + " outlines, style " + std::to_string(int(m.style));
+  const std::string name = std::string(m.file) + " " + *planes.begin() + ", style " + std::to_string(int(m.style));
   Print(name, r.buffers);
-  const BufferComparison& outline = r.Get("outline");
-  EXPECT_EQ(outline.compared, uint64_t(r.sampleWidth) * uint64_t(r.sampleHeight));
+  for (const char* plane : planes) EXPECT_GT(r.Get(plane).compared, 0u) << plane;
   ExpectWithinBounds(name, r.buffers);
+}
+
+TEST_P(RealMolecules, OutlinesWithinBounds) {
+  SOFTMOL_NEED_GL();
+  ExpectEffectWithinBounds(GetParam(), [](effects::RenderOptions& o) { o.outlines = true; }, {"outline"});
+}
+
+TEST_P(RealMolecules, ShadowsWithinBounds) {
+  SOFTMOL_NEED_GL();
+  ExpectEffectWithinBounds(
+      GetParam(),
+      [](effects::RenderOptions& o) {
+        o.shadows = true;
+        o.shadow.mapSize = 512;  // keeps llvmpipe's share of the test short
+      },
+      {"shadow map", "shadow"});
 }
 
 INSTANTIATE_TEST_SUITE_P(
