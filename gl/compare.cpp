@@ -219,6 +219,9 @@ BackendReport CompareBackends(FrameRenderer& renderer, const raster::PrimitiveSc
   if (options.shadows)
     r.buffers.push_back(CompareSamplePlane("shadow", cpuResources.shadow, renderer.Plane(effects::kBufShadow), cpu.width,
                                            cpu.height));
+  if (options.ao != effects::AoMode::kNone)
+    r.buffers.push_back(CompareSamplePlane("ao", cpuResources.ao, renderer.Plane(effects::kBufAo), cpu.width,
+                                           cpu.height));
   if (options.outlines)
     r.buffers.push_back(CompareSamplePlane("outline", cpuResources.outline, renderer.Plane(effects::kBufOutline),
                                            cpu.width, cpu.height));

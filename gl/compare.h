@@ -64,7 +64,7 @@ std::string FormatComparison(const BufferComparison& c);
 struct BackendReport {
   int sampleWidth = 0, sampleHeight = 0;  // G-buffer size (output × ssaa)
   // id, depth, normal, base color, then the effect planes the plan wrote (shadow map, shadow,
-  // outline), color float, color 8-bit.
+  // ao, outline), color float, color 8-bit.
   std::vector<BufferComparison> buffers;
   effects::RenderedFrame cpu, gl;
   const BufferComparison& Get(const std::string& name) const;  // SOFTMOL_CHECK-fails if absent

@@ -17,10 +17,12 @@ struct FrameRenderer::Impl {
   detail::ShadingPass shading;
   detail::OutlinesPass outlines;
   detail::ShadowPass shadows;
+  detail::ConeAoPass coneAo;
+  ao::OccupancyPyramid pyramid;  // built on the CPU (the same pass as the CPU backend's), uploaded
   detail::GBufferTargets gbuffer;
   // Per-sample results read back, for the shading pass (which uploads its inputs) and for the
   // comparison.
-  std::vector<float> outline, shadow;
+  std::vector<float> outline, shadow, ao;
   raster::GBuffer samples;  // read-back scratch for the AOVs
 };
 
@@ -63,6 +65,7 @@ FrameRenderer::FrameRenderer() : impl_(std::make_unique<Impl>()) {
   impl_->shading.Create();
   impl_->outlines.Create();
   impl_->shadows.Create();
+  impl_->coneAo.Create();
 }
 
 FrameRenderer::~FrameRenderer() {
@@ -70,6 +73,7 @@ FrameRenderer::~FrameRenderer() {
   impl_->shading.Release();
   impl_->outlines.Release();
   impl_->shadows.Release();
+  impl_->coneAo.Release();
   impl_->gbuffer.Release();
 }
 
@@ -89,8 +93,9 @@ GlFrameStats FrameRenderer::RenderGBuffer(const raster::PrimitiveScene& scene,
 
 bool Mirrors(effects::PassId pass) {
   using effects::PassId;
-  return pass == PassId::kGBuffer || pass == PassId::kShadowMap || pass == PassId::kShadows ||
-         pass == PassId::kOutlines || pass == PassId::kShading || pass == PassId::kAovs;
+  return pass == PassId::kGBuffer || pass == PassId::kOccupancyPyramid || pass == PassId::kConeAo ||
+         pass == PassId::kShadowMap || pass == PassId::kShadows || pass == PassId::kOutlines ||
+         pass == PassId::kShading || pass == PassId::kAovs;
 }
 
 GlFrameStats FrameRenderer::RenderFrame(const raster::PrimitiveScene& scene,
@@ -104,6 +109,7 @@ GlFrameStats FrameRenderer::RenderFrame(const raster::PrimitiveScene& scene,
   cam.width = camera.width * o.ssaa;
   cam.height = camera.height * o.ssaa;
   f.passes.clear();
+  impl_->ao.clear();  // no AO pass this frame: the AOV and the shading see none
   f.width = camera.width;
   f.height = camera.height;
   GlFrameStats s;
@@ -119,6 +125,16 @@ GlFrameStats FrameRenderer::RenderFrame(const raster::PrimitiveScene& scene,
       fo.contourDepthScale = o.contourDepthScale;
       fo.nearClip = o.nearClip;
       s = DrawGBuffer(*impl_, scene, cam, fo);
+    } else if (pass.id == effects::PassId::kOccupancyPyramid) {
+      // The CPU builds it (Hermosilla et al. rebuild it per frame on the GPU; here the mirror
+      // checks the cone tracing against the same grid); re-uploaded only when it changed.
+      const bool rebuilt = ao::UpdateOccupancyPyramid(scene, o.pyramid, impl_->pyramid);
+      if (rebuilt || impl_->coneAo.levelStart.size() != impl_->pyramid.levels.size())
+        impl_->coneAo.Upload(impl_->pyramid);
+      CheckGl("the pyramid upload");
+    } else if (pass.id == effects::PassId::kConeAo) {
+      impl_->coneAo.Run(impl_->gbuffer, cam, impl_->pyramid, o.cone, impl_->ao);
+      CheckGl("the cone AO pass");
     } else if (pass.id == effects::PassId::kShadowMap) {
       impl_->shadows.RenderMap(impl_->tileKernel, scene, cam, o.shading.lightDirection, o.shadow);
       glFinish();
@@ -135,6 +151,7 @@ GlFrameStats FrameRenderer::RenderFrame(const raster::PrimitiveScene& scene,
       effects::ShadeInputs inputs = effects::MakeShadeInputs(o, scene, cam);
       if (o.outlines) inputs.outline = impl_->outline;
       if (o.shadows) inputs.shadow = impl_->shadow;
+      if (o.ao != effects::AoMode::kNone) inputs.ambientOcclusion = impl_->ao;
       impl_->shading.Run(impl_->gbuffer, o.ssaa, o.shading, effects::Backdrop{o.background, o.transparent},
                          &inputs);
       glFinish();
@@ -164,6 +181,7 @@ const std::vector<float>& FrameRenderer::Plane(effects::FrameBuffer buffer) cons
   switch (buffer) {
     case effects::kBufOutline: return impl_->outline;
     case effects::kBufShadow: return impl_->shadow;
+    case effects::kBufAo: return impl_->ao;
     case effects::kBufShadowMap: return impl_->shadows.light.map.depth;
     default: return none;
   }
@@ -180,7 +198,7 @@ void FrameRenderer::ReadBackFrame(const effects::RenderOptions& o, uint32_t chan
   f.normalY.assign(o.aovs & effects::kAovNormal ? n : 0, 0.0f);
   f.normalZ.assign(o.aovs & effects::kAovNormal ? n : 0, 0.0f);
   f.id.assign(o.aovs & effects::kAovId ? n : 0, 0u);
-  // No AO pass is mirrored: the AO AOV is open everywhere, as the CPU's is without AO.
+  // Open everywhere when no AO pass ran, as on the CPU.
   f.ao.assign(o.aovs & effects::kAovAo ? n : 0, 1.0f);
   raster::GBuffer& g = samples ? *samples : impl_->samples;
   if (samples != nullptr || o.aovs != 0) detail::ReadBack(impl_->gbuffer, channels, g);
@@ -201,6 +219,7 @@ void FrameRenderer::ReadBackFrame(const effects::RenderOptions& o, uint32_t chan
           f.normalZ[out] = covered ? g.normalZ[c] : 0.0f;
         }
         if (o.aovs & effects::kAovId) f.id[out] = g.primitiveId[c];
+        if ((o.aovs & effects::kAovAo) && !impl_->ao.empty()) f.ao[out] = impl_->ao[c];
       }
     }
   }

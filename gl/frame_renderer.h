@@ -4,8 +4,9 @@
 // shared raster/shared/*.inc formulas) into a float/integer G-buffer, then deferred shading
 // fused with the supersample resolve (effects/shared/blinn_phong.inc). It runs the plan the
 // CPU runs (effects::PlanPasses). Mirrored passes: G-buffer (depth, normal, base colour,
-// primitive id, surface coordinates, contour lines, caps), the shadow map and PCF, Sobel
-// outlines, shading (with the depth cue) and the AOVs.
+// primitive id, surface coordinates, contour lines, caps), the occupancy pyramid (built on the
+// CPU, uploaded) and cone AO, the shadow map and PCF, Sobel outlines, shading (with the depth
+// cue) and the AOVs.
 // Needs a current gl::Context (gl/context_egl.h) on the calling thread.
 #pragma once
 
@@ -53,8 +54,8 @@ class FrameRenderer {
                            const effects::RenderOptions& options, effects::RenderedFrame& frame,
                            raster::GBuffer* samples = nullptr);
 
-  // One float plane the last frame's plan wrote, row 0 at the bottom: kBufOutline, kBufShadow
-  // (one per G-buffer sample), kBufShadowMap (the light's depth); empty for any other.
+  // One float plane the last frame's plan wrote, row 0 at the bottom: kBufOutline, kBufShadow,
+  // kBufAo (one per G-buffer sample), kBufShadowMap (the light's depth); empty for any other.
   const std::vector<float>& Plane(effects::FrameBuffer buffer) const;
 
   struct Impl;

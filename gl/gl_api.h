@@ -62,6 +62,7 @@
   X(glProgramUniform1f) \
   X(glProgramUniform1fv) \
   X(glProgramUniform1i) \
+  X(glProgramUniform1iv) \
   X(glProgramUniform2i) \
   X(glProgramUniform2f) \
   X(glProgramUniform3f) \

@@ -1,11 +1,14 @@
 // gl/detail/passes.h — the GL passes behind gl::FrameRenderer, one file per CPU pass with the
 // same stem: gl/tile_kernel.cpp (↔ raster/tile_kernel*.cpp), gl/shading.cpp (↔ effects/shading.cpp),
-// gl/outlines.cpp (↔ effects/outlines.cpp), gl/shadows.cpp (↔ effects/shadows.cpp).
+// gl/outlines.cpp (↔ effects/outlines.cpp), gl/shadows.cpp (↔ effects/shadows.cpp),
+// gl/cone_ao.cpp (↔ ao/cone_trace.cpp).
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
+#include "ao/cone_trace.h"
+#include "ao/occupancy_pyramid.h"
 #include "effects/outlines.h"
 #include "effects/shading.h"
 #include "effects/shadows.h"
@@ -95,6 +98,21 @@ struct ShadowPass {
   // PCF of every sample of `g` (seen by `camera`), read back into `visibility` (G-buffer order).
   void Run(const GBufferTargets& g, const raster::Camera& camera, const effects::ShadowOptions& options,
            std::vector<float>& visibility);
+};
+
+// Cone-traced AO (↔ ao/cone_trace.cpp): the CPU's occupancy pyramid uploaded as one storage
+// buffer, then one R32F accessibility per G-buffer sample.
+struct ConeAoPass {
+  uint32_t program = 0, fbo = 0, target = 0, pyramidBuffer = 0;
+  int width = 0, height = 0;
+  std::vector<int> levelStart;  // first value of each level in the buffer
+  void Create();
+  void Release();
+  void Upload(const ao::OccupancyPyramid& pyramid);
+  // Cones from every sample of `g` (seen by `camera`) through the uploaded `pyramid`, read back
+  // into `accessibility` (G-buffer order).
+  void Run(const GBufferTargets& g, const raster::Camera& camera, const ao::OccupancyPyramid& pyramid,
+           const ao::ConeAoOptions& options, std::vector<float>& accessibility);
 };
 
 }  // namespace softmol::gl::detail

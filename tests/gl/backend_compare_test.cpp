@@ -57,7 +57,7 @@ void ExpectWithinBounds(const std::string& scene, const std::vector<BufferCompar
       EXPECT_GE(b.FractionEqual(), kIdAgreement) << scene;
     } else if (b.name == "depth") {
       EXPECT_LE(b.maxDifference, kDepthMaxUlp) << scene;
-    } else if (b.name == "outline" || b.name == "shadow" || b.name == "shadow map") {
+    } else if (b.name == "outline" || b.name == "shadow" || b.name == "shadow map" || b.name == "ao") {
       // Passes of their own on the G-buffer (and the light's): bit for bit wherever their
       // inputs are, so bounded as the ids are.
       EXPECT_GE(b.FractionEqual(), kIdAgreement) << scene;
@@ -190,6 +190,18 @@ void ExpectEffectWithinBounds(const MoleculeCase& m, void (*turnOn)(effects::Ren
 TEST_P(RealMolecules, OutlinesWithinBounds) {
   SOFTMOL_NEED_GL();
   ExpectEffectWithinBounds(GetParam(), [](effects::RenderOptions& o) { o.outlines = true; }, {"outline"});
+}
+
+TEST_P(RealMolecules, ConeAoWithinBounds) {
+  SOFTMOL_NEED_GL();
+  ExpectEffectWithinBounds(
+      GetParam(),
+      [](effects::RenderOptions& o) {
+        o.ao = effects::AoMode::kCone;
+        o.cone.cones = 5;
+        o.aovs = effects::kAovAo;
+      },
+      {"ao"});
 }
 
 TEST_P(RealMolecules, ShadowsWithinBounds) {

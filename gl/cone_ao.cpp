@@ -1,0 +1,86 @@
+// gl/cone_ao.cpp — cone-traced AO in the GL mirror (twin of ao::ConeTraceAo); fragment shader
+// gl/shaders/cone_ao.frag. The occupancy pyramid is built by the CPU pass (ao/
+// occupancy_pyramid.cpp, rebuilt only when the scene moved) and uploaded here as one storage
+// buffer; the per-frame constants are the CPU's (ao::detail::MakeConeConstants).
+#include "common/check.h"
+#include "gl/detail/passes.h"
+#include "gl/gl_api.h"
+#include "gl/prim_layout.h"
+#include "gl/program.h"
+
+namespace softmol::gl::detail {
+
+void ConeAoPass::Create() {
+  program = BuildProgram("gl/shaders/fullscreen.vert", "gl/shaders/cone_ao.frag", PrimLayoutDefines());
+  glCreateFramebuffers(1, &fbo);
+  glCreateBuffers(1, &pyramidBuffer);
+}
+
+void ConeAoPass::Release() {
+  if (program == 0) return;
+  glDeleteProgram(program);
+  glDeleteFramebuffers(1, &fbo);
+  glDeleteBuffers(1, &pyramidBuffer);
+  if (target != 0) glDeleteTextures(1, &target);
+  program = fbo = target = pyramidBuffer = 0;
+  width = height = 0;
+}
+
+void ConeAoPass::Upload(const ao::OccupancyPyramid& pyramid) {
+  size_t total = 0;
+  for (const ao::PyramidLevel& l : pyramid.levels) total += l.occupancy.size();
+  glNamedBufferData(pyramidBuffer, GLsizeiptr(total * sizeof(float)), nullptr, GL_STATIC_DRAW);
+  levelStart.clear();
+  size_t at = 0;
+  for (const ao::PyramidLevel& l : pyramid.levels) {
+    levelStart.push_back(int(at));
+    glNamedBufferSubData(pyramidBuffer, GLintptr(at * sizeof(float)), GLsizeiptr(l.occupancy.size() * sizeof(float)),
+                         l.occupancy.data());
+    at += l.occupancy.size();
+  }
+}
+
+void ConeAoPass::Run(const GBufferTargets& g, const raster::Camera& camera, const ao::OccupancyPyramid& pyramid,
+                     const ao::ConeAoOptions& options, std::vector<float>& accessibility) {
+  SOFTMOL_CHECK(camera.width == g.width && camera.height == g.height);
+  SOFTMOL_CHECK(levelStart.size() == pyramid.levels.size());
+  if (g.width != width || g.height != height || target == 0) {
+    if (target != 0) glDeleteTextures(1, &target);
+    glCreateTextures(GL_TEXTURE_2D, 1, &target);
+    glTextureStorage2D(target, 1, GL_R32F, g.width, g.height);
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, target, 0);
+    width = g.width;
+    height = g.height;
+  }
+  const ao::detail::ConeConstants k = ao::detail::MakeConeConstants(pyramid, camera, options, g.width);
+  const GLuint p = program;
+  const auto loc = [p](const char* name) { return glGetUniformLocation(p, name); };
+  glProgramUniform1fv(p, loc("uM"), 9, k.m);
+  glProgramUniform1fv(p, loc("uOffset"), 3, k.offset);
+  glProgramUniform1fv(p, loc("uRot"), 9, k.rot);
+  glProgramUniform1f(p, loc("uHalfWidth"), k.halfWidth);
+  glProgramUniform1f(p, loc("uHalfHeight"), k.halfHeight);
+  glProgramUniform1f(p, loc("uPixelScale"), k.pixelScale);
+  glProgramUniform1i(p, loc("uOrtho"), k.ortho ? 1 : 0);
+  glProgramUniform1i(p, loc("uCones"), k.cones);
+  glProgramUniform1i(p, loc("uSamples"), k.samples);
+  glProgramUniform1f(p, loc("uConeCount"), k.coneCount);
+  glProgramUniform1fv(p, loc("uDir"), 3 * k.cones, &k.dir[0][0]);
+  glProgramUniform1fv(p, loc("uDistance"), k.samples, k.distance);
+  glProgramUniform1iv(p, loc("uLevel"), k.samples, k.level);
+  glProgramUniform1fv(p, loc("uLevelFrac"), k.samples, k.levelFrac);
+  const int levels = int(pyramid.levels.size());
+  glProgramUniform1iv(p, loc("uLevelStart"), levels, levelStart.data());
+  glProgramUniform1iv(p, loc("uRes"), levels, k.res);
+  glProgramUniform1fv(p, loc("uResF"), levels, k.resF);
+  glProgramUniform1fv(p, loc("uScale"), levels, k.scale);
+  glBindTextureUnit(0, g.color[kAttDepth]);
+  glBindTextureUnit(1, g.color[kAttNormal]);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, pyramidBuffer);
+  DrawFullscreen(p, fbo, g.width, g.height);
+  accessibility.resize(size_t(g.width) * size_t(g.height));
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glGetTextureImage(target, 0, GL_RED, GL_FLOAT, GLsizei(accessibility.size() * sizeof(float)), accessibility.data());
+}
+
+}  // namespace softmol::gl::detail
