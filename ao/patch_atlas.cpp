@@ -231,25 +231,12 @@ glm::vec2 AtlasTexelCoord(PatchKind kind, const PatchRect& r, glm::vec2 uv) noex
 float LookupPatch(const AoAtlas& atlas, PatchKind kind, const PatchRect& r, glm::vec2 uv) noexcept {
   const shared::PatchTexel t = shared::PatchTexelCoord(kind == PatchKind::kCube ? 1 : 0, uv.x, uv.y,
                                                        float(r.width), float(r.height));
-  // Texel-index space (centre of texel i at i); stay inside the chart's texel centres, so a
-  // coordinate rounded just outside [0,1] and the last row/column both fetch inside the chart.
-  auto axis = [](float c, float lo, float hi, int& i0, float& f) {
-    float x = c - 0.5f;
-    const float a = lo - 0.5f, b = hi - 0.5f;
-    x = x < a ? a : x;
-    x = x > b ? b : x;
-    i0 = int(std::floor(x));
-    if (float(i0) >= b) i0 = int(b) - 1;  // b - a >= 1: every chart has >= 2 texel centres
-    f = x - float(i0);
-  };
-  int ix, iy;
-  float fx, fy;
-  axis(t.x, t.x0, t.x1, ix, fx);
-  axis(t.y, t.y0, t.y1, iy, fy);
+  const shared::BilinearAxis ax = shared::BilinearAxisOf(t.x, t.x0, t.x1);
+  const shared::BilinearAxis ay = shared::BilinearAxisOf(t.y, t.y0, t.y1);
   const size_t side = size_t(atlas.layout.side);
-  const float* row0 = atlas.texels.data() + size_t(r.y0 + iy) * side + size_t(r.x0 + ix);
+  const float* row0 = atlas.texels.data() + size_t(r.y0 + ay.i0) * side + size_t(r.x0 + ax.i0);
   const float* row1 = row0 + side;
-  return shared::Bilinear(row0[0], row0[1], row1[0], row1[1], fx, fy);
+  return shared::Bilinear(row0[0], row0[1], row1[0], row1[1], ax.f, ay.f);
 }
 
 float LookupSphere(const AoAtlas& atlas, size_t sphere, glm::vec3 n) noexcept {

@@ -120,6 +120,7 @@ HWY_AFTER_NAMESPACE();
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <mutex>
 #include <stdexcept>
@@ -613,6 +614,18 @@ AoAtlas BakeAo(const raster::PrimitiveScene& scene, const BakeOptions& o, BakeSt
     stats->mapSize = size;
   }
   return atlas;
+}
+
+uint64_t BakeInputHash(const raster::PrimitiveScene& scene, const BakeOptions& b) {
+  uint64_t h = raster::GeometryHash(scene);
+  const auto mix = [&h](uint64_t v) { h = (h ^ v) * 0x100000001B3ull; };
+  mix(uint64_t(b.directions)), mix(uint64_t(b.shadowMapSize));
+  uint32_t bias;
+  std::memcpy(&bias, &b.depthBias, sizeof bias);
+  mix(bias);
+  mix(uint64_t(b.atlas.textureSide)), mix(uint64_t(b.atlas.patchSize));
+  mix(uint64_t(b.atlas.sphereMap)), mix(uint64_t(b.atlas.cylindersPerPatch));
+  return h;
 }
 
 void LookupBakedAo(const AoAtlas& atlas, const raster::GBuffer& g, std::span<float> ao) {

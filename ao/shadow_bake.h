@@ -55,6 +55,10 @@ struct BakeStats {
 
 // Throws std::invalid_argument (naming the option) for bad options or an atlas that cannot fit.
 // `progress` (optional) is called from the calling thread with the fraction done, in [0, 1].
+// What a bake depends on (the primitives and the options, not the camera): equal hashes
+// mean the atlas can be kept.
+uint64_t BakeInputHash(const raster::PrimitiveScene& scene, const BakeOptions& options);
+
 AoAtlas BakeAo(const raster::PrimitiveScene& scene, const BakeOptions& options,
                BakeStats* stats = nullptr,
                const std::function<void(double fraction)>& progress = {});

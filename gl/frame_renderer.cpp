@@ -18,6 +18,10 @@ struct FrameRenderer::Impl {
   detail::OutlinesPass outlines;
   detail::ShadowPass shadows;
   detail::ConeAoPass coneAo;
+  detail::BakedAoPass bakedAo;
+  ao::AoAtlas atlas;  // baked on the CPU (the bake is not mirrored), uploaded when re-baked
+  uint64_t atlasKey = 0;
+  bool atlasBaked = false;
   ao::OccupancyPyramid pyramid;  // built on the CPU (the same pass as the CPU backend's), uploaded
   detail::GBufferTargets gbuffer;
   // Per-sample results read back, for the shading pass (which uploads its inputs) and for the
@@ -66,6 +70,7 @@ FrameRenderer::FrameRenderer() : impl_(std::make_unique<Impl>()) {
   impl_->outlines.Create();
   impl_->shadows.Create();
   impl_->coneAo.Create();
+  impl_->bakedAo.Create();
 }
 
 FrameRenderer::~FrameRenderer() {
@@ -74,6 +79,7 @@ FrameRenderer::~FrameRenderer() {
   impl_->outlines.Release();
   impl_->shadows.Release();
   impl_->coneAo.Release();
+  impl_->bakedAo.Release();
   impl_->gbuffer.Release();
 }
 
@@ -93,7 +99,8 @@ GlFrameStats FrameRenderer::RenderGBuffer(const raster::PrimitiveScene& scene,
 
 bool Mirrors(effects::PassId pass) {
   using effects::PassId;
-  return pass == PassId::kGBuffer || pass == PassId::kOccupancyPyramid || pass == PassId::kConeAo ||
+  return pass == PassId::kGBuffer || pass == PassId::kAoBake || pass == PassId::kBakedAoLookup ||
+         pass == PassId::kOccupancyPyramid || pass == PassId::kConeAo ||
          pass == PassId::kShadowMap || pass == PassId::kShadows || pass == PassId::kOutlines ||
          pass == PassId::kShading || pass == PassId::kAovs;
 }
@@ -125,6 +132,19 @@ GlFrameStats FrameRenderer::RenderFrame(const raster::PrimitiveScene& scene,
       fo.contourDepthScale = o.contourDepthScale;
       fo.nearClip = o.nearClip;
       s = DrawGBuffer(*impl_, scene, cam, fo);
+    } else if (pass.id == effects::PassId::kAoBake) {
+      // Baked on the CPU, once per structure and options, as the CPU backend keeps it.
+      const uint64_t key = ao::BakeInputHash(scene, o.bake);
+      if (!impl_->atlasBaked || impl_->atlasKey != key) {
+        impl_->atlas = ao::BakeAo(scene, o.bake);
+        impl_->atlasKey = key;
+        impl_->atlasBaked = true;
+        impl_->bakedAo.Upload(impl_->atlas);
+        CheckGl("the atlas upload");
+      }
+    } else if (pass.id == effects::PassId::kBakedAoLookup) {
+      impl_->bakedAo.Run(impl_->gbuffer, impl_->ao);
+      CheckGl("the baked AO lookup");
     } else if (pass.id == effects::PassId::kOccupancyPyramid) {
       // The CPU builds it (Hermosilla et al. rebuild it per frame on the GPU; here the mirror
       // checks the cone tracing against the same grid); re-uploaded only when it changed.

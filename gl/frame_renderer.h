@@ -4,8 +4,8 @@
 // shared raster/shared/*.inc formulas) into a float/integer G-buffer, then deferred shading
 // fused with the supersample resolve (effects/shared/blinn_phong.inc). It runs the plan the
 // CPU runs (effects::PlanPasses). Mirrored passes: G-buffer (depth, normal, base colour,
-// primitive id, surface coordinates, contour lines, caps), the occupancy pyramid (built on the
-// CPU, uploaded) and cone AO, the shadow map and PCF, Sobel outlines, shading (with the depth
+// primitive id, surface coordinates, contour lines, caps), the baked-AO lookup (the atlas baked
+// on the CPU, uploaded), the occupancy pyramid (built on the CPU, uploaded) and cone AO, the shadow map and PCF, Sobel outlines, shading (with the depth
 // cue) and the AOVs.
 // Needs a current gl::Context (gl/context_egl.h) on the calling thread.
 #pragma once

@@ -44,6 +44,7 @@
   X(glEnable) \
   X(glFinish) \
   X(glGetError) \
+  X(glGetIntegerv) \
   X(glGetProgramInfoLog) \
   X(glGetProgramiv) \
   X(glGetShaderInfoLog) \
@@ -63,6 +64,7 @@
   X(glProgramUniform1fv) \
   X(glProgramUniform1i) \
   X(glProgramUniform1iv) \
+  X(glProgramUniform1ui) \
   X(glProgramUniform2i) \
   X(glProgramUniform2f) \
   X(glProgramUniform3f) \

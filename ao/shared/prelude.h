@@ -9,6 +9,7 @@
 namespace softmol::ao::shared {
 using raster::shared::Float3;
 using std::abs;
+using std::floor;
 using std::sqrt;
 // clang-format off
 #include "ao/shared/surface_maps.inc"

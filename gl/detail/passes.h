@@ -1,7 +1,7 @@
 // gl/detail/passes.h — the GL passes behind gl::FrameRenderer, one file per CPU pass with the
 // same stem: gl/tile_kernel.cpp (↔ raster/tile_kernel*.cpp), gl/shading.cpp (↔ effects/shading.cpp),
 // gl/outlines.cpp (↔ effects/outlines.cpp), gl/shadows.cpp (↔ effects/shadows.cpp),
-// gl/cone_ao.cpp (↔ ao/cone_trace.cpp).
+// gl/cone_ao.cpp (↔ ao/cone_trace.cpp), gl/baked_ao.cpp (↔ the lookup of ao/shadow_bake.cpp).
 #pragma once
 
 #include <cstdint>
@@ -9,6 +9,7 @@
 
 #include "ao/cone_trace.h"
 #include "ao/occupancy_pyramid.h"
+#include "ao/patch_atlas.h"
 #include "effects/outlines.h"
 #include "effects/shading.h"
 #include "effects/shadows.h"
@@ -113,6 +114,19 @@ struct ConeAoPass {
   // into `accessibility` (G-buffer order).
   void Run(const GBufferTargets& g, const raster::Camera& camera, const ao::OccupancyPyramid& pyramid,
            const ao::ConeAoOptions& options, std::vector<float>& accessibility);
+};
+
+// The baked-AO lookup (↔ ao/shadow_bake.cpp LookupBakedAo): the CPU's atlas uploaded as an
+// R32F texture, then one accessibility per G-buffer sample of an atom or bond.
+struct BakedAoPass {
+  uint32_t program = 0, fbo = 0, target = 0, atlasTexture = 0;
+  int width = 0, height = 0, atlasSide = 0;
+  ao::AtlasLayout layout;  // of the uploaded atlas
+  void Create();
+  void Release();
+  // Throws std::runtime_error when the atlas exceeds the driver's texture size.
+  void Upload(const ao::AoAtlas& atlas);
+  void Run(const GBufferTargets& g, std::vector<float>& accessibility);
 };
 
 }  // namespace softmol::gl::detail

@@ -204,6 +204,20 @@ TEST_P(RealMolecules, ConeAoWithinBounds) {
       {"ao"});
 }
 
+TEST_P(RealMolecules, BakedAoWithinBounds) {
+  SOFTMOL_NEED_GL();
+  ExpectEffectWithinBounds(
+      GetParam(),
+      [](effects::RenderOptions& o) {
+        o.ao = effects::AoMode::kBaked;
+        o.bake.directions = 32;  // a small bake: the lookup is what is compared
+        o.bake.shadowMapSize = 256;
+        o.bake.atlas.textureSide = 2048;
+        o.aovs = effects::kAovAo;
+      },
+      {"ao"});
+}
+
 TEST_P(RealMolecules, ShadowsWithinBounds) {
   SOFTMOL_NEED_GL();
   ExpectEffectWithinBounds(
