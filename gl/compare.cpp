@@ -36,6 +36,16 @@ void CheckSameShape(const raster::GBuffer& a, const raster::GBuffer& b) {
 
 }  // namespace
 
+bool BufferComparison::FirstDifference(int& x, int& y) const {
+  for (size_t i = 0; i < differs.size(); ++i) {
+    if (!differs[i] || width <= 0) continue;
+    x = int(i % size_t(width));
+    y = int(i / size_t(width));
+    return true;
+  }
+  return false;
+}
+
 uint64_t UlpDistance(float a, float b) {
   if (std::bit_cast<uint32_t>(a) == std::bit_cast<uint32_t>(b)) return 0;
   if (std::isnan(a) || std::isnan(b)) return 0xFFFFFFFFu;
@@ -70,6 +80,7 @@ BufferComparison ComparePrimitiveIds(const raster::GBuffer& cpu, const raster::G
   BufferComparison c;
   c.name = "primitive id";
   c.unit = "id";
+  c.width = cpu.width;
   c.differs.assign(cpu.primitiveId.size(), 0);
   for (size_t i = 0; i < cpu.primitiveId.size(); ++i) {
     const uint32_t a = cpu.primitiveId[i], b = gl.primitiveId[i];
@@ -88,6 +99,7 @@ BufferComparison CompareFloatChannel(
   BufferComparison c;
   c.name = name;
   c.unit = "ulp";
+  c.width = cpu.width;
   c.differs.assign(cpu.primitiveId.size(), 0);
   for (size_t i = 0; i < cpu.primitiveId.size(); ++i) {
     if (!SamePrimitive(cpu, gl, i)) continue;
@@ -105,6 +117,7 @@ BufferComparison CompareBaseColor(const raster::GBuffer& cpu, const raster::GBuf
   BufferComparison c;
   c.name = "base color";
   c.unit = "id";
+  c.width = cpu.width;
   c.differs.assign(cpu.primitiveId.size(), 0);
   for (size_t i = 0; i < cpu.primitiveId.size(); ++i) {
     if (!SamePrimitive(cpu, gl, i)) continue;
@@ -124,6 +137,7 @@ BufferComparison CompareRgba(const char* name, const char* unit, std::span<const
   BufferComparison c;
   c.name = name;
   c.unit = unit;
+  c.width = width;
   c.differs.assign(size_t(width) * size_t(height), 0);
   for (int row = 0; row < height; ++row)
     for (int x = 0; x < width; ++x) {
@@ -147,6 +161,7 @@ BufferComparison CompareSamplePlane(const std::string& name, std::span<const flo
   BufferComparison c;
   c.name = name;
   c.unit = "ulp";
+  c.width = width;
   c.differs.assign(cpu.size(), 0);
   for (size_t i = 0; i < cpu.size(); ++i) {
     const uint64_t d = UlpDistance(cpu[i], gl[i]);
@@ -175,6 +190,9 @@ std::string FormatComparison(const BufferComparison& c) {
                 c.name.c_str(), static_cast<unsigned long long>(c.compared), c.FractionEqual(),
                 static_cast<unsigned long long>(c.maxDifference), c.unit.c_str());
   std::string s = line;
+  int x = 0, y = 0;
+  if (c.FirstDifference(x, y))
+    s += "    first differs at pixel (" + std::to_string(x) + ", " + std::to_string(y) + "), window coordinates\n";
   s += "    histogram:";
   for (int b = 0; b < kHistogramBins; ++b)
     if (c.histogram[size_t(b)] != 0)

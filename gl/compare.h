@@ -28,8 +28,11 @@ struct BufferComparison {
   uint64_t equal = 0;        // of them, equal bit for bit
   uint64_t maxDifference = 0;
   std::array<uint64_t, kHistogramBins> histogram{};
+  int width = 0;                 // of the plane compared
   std::vector<uint8_t> differs;  // width·height, row 0 at the bottom: 1 where any value differs
   double FractionEqual() const { return compared ? double(equal) / double(compared) : 1.0; }
+  // The first differing pixel in row order from the bottom (window coordinates); false when none.
+  bool FirstDifference(int& x, int& y) const;
 };
 
 // Distance between two floats in units in the last place (0 iff the bits are equal, so
@@ -56,7 +59,8 @@ BufferComparison CompareSamplePlane(const std::string& name, std::span<const flo
 BufferComparison CompareColorUlp(std::span<const float> cpu, std::span<const float> gl, int width, int height);
 BufferComparison CompareColor8(std::span<const float> cpu, std::span<const float> gl, int width, int height);
 
-// Several lines: name, compared, fraction equal, max difference, non-empty histogram bins.
+// Several lines: name, compared, fraction equal, max difference, the first differing pixel,
+// non-empty histogram bins.
 std::string FormatComparison(const BufferComparison& c);
 
 // ---- both backends on one scene ----

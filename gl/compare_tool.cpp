@@ -2,7 +2,8 @@
 // GL mirror, compares every buffer (gl/compare.h), prints the report, optionally writes one
 // image per buffer of where the two differ (red on dark grey), and times both.
 //   softmol_gl_compare MOLECULE [--size 640x480] [--style spacefill|balls|licorice|ellipsoids]
-//                      [--ssaa N] [--threads N] [--repeat N] [--diff PREFIX]
+//                      [--threads N] [--repeat N] [--diff PREFIX] [pass options: --ssaa N,
+//                      --shadows, --ao cone, --outlines, ... as `softmol render` takes them]
 // Set LP_NUM_THREADS=N as well to give llvmpipe the same thread count as the CPU backend.
 #include <algorithm>
 #include <cstdio>
@@ -17,6 +18,8 @@
 
 #include "common/timer.h"
 #include "effects/frame_renderer.h"
+#include "effects/pass_list.h"
+#include "io/error.h"
 #include "gl/compare.h"
 #include "gl/context_egl.h"
 #include "gl/frame_renderer.h"
@@ -32,15 +35,39 @@ using namespace softmol;
 
 struct Args {
   std::string molecule, style = "spacefill", diffPrefix;
-  int width = 640, height = 480, ssaa = 1, threads = 0, repeat = 0;
+  int width = 640, height = 480, threads = 0, repeat = 0;
+  effects::RenderOptions options;  // every pass option, as `softmol render` takes it
 };
 
 [[noreturn]] void Usage(const char* why) {
   std::fprintf(stderr,
                "softmol_gl_compare: %s\nusage: softmol_gl_compare MOLECULE [--size WxH] [--style S] "
-               "[--ssaa N] [--threads N] [--repeat N] [--diff PREFIX]\n",
+               "[--threads N] [--repeat N] [--diff PREFIX] [any pass option of softmol render: --ssaa N, "
+               "--shadows, --ao cone, ...]\n",
                why);
   std::exit(2);
+}
+
+// A pass option by its declaration (effects/pass_list.h RenderParams): the same names, ranges
+// and messages as `softmol render`.
+void SetPassOption(Args& a, const std::string& name, int argc, char** argv, int& i) {
+  static const io::ParamTable<effects::RenderOptions> params = effects::RenderParams();
+  for (const io::Param<effects::RenderOptions>& p : params) {
+    if (p.name != name) continue;
+    std::string text = p.isSwitch ? "true" : p.implicitValue;
+    const bool hasValue = i + 1 < argc && argv[i + 1][0] != '-';
+    if (!p.isSwitch && (hasValue || p.implicitValue.empty())) {
+      if (i + 1 >= argc) Usage(("missing value after --" + name).c_str());
+      text = argv[++i];
+    }
+    try {
+      p.set(a.options, text, io::FlagLocation(name));
+    } catch (const io::InputError& e) {
+      Usage(e.what());
+    }
+    return;
+  }
+  Usage(("unknown option --" + name).c_str());
 }
 
 Args Parse(int argc, char** argv) {
@@ -56,15 +83,19 @@ Args Parse(int argc, char** argv) {
       if (std::sscanf(v.c_str(), "%dx%d", &a.width, &a.height) != 2 || a.width <= 0 || a.height <= 0)
         Usage("--size must be WIDTHxHEIGHT");
     } else if (s == "--style") a.style = value();
-    else if (s == "--ssaa") a.ssaa = std::atoi(value().c_str());
     else if (s == "--threads") a.threads = std::atoi(value().c_str());
     else if (s == "--repeat") a.repeat = std::atoi(value().c_str());
     else if (s == "--diff") a.diffPrefix = value();
+    else if (s.size() > 2 && s[0] == '-' && s[1] == '-') SetPassOption(a, s.substr(2), argc, argv, i);
     else if (!s.empty() && s[0] == '-') Usage(("unknown option " + s).c_str());
     else a.molecule = s;
   }
   if (a.molecule.empty()) Usage("no MOLECULE");
-  if (a.ssaa < 1 || a.ssaa > 4) Usage("--ssaa must be 1..4");
+  try {
+    effects::CheckRenderOptions(a.options);
+  } catch (const io::InputError& e) {
+    Usage(e.what());
+  }
   return a;
 }
 
@@ -117,14 +148,20 @@ int main(int argc, char** argv) {
     rep.style = style;
     const raster::PrimitiveScene scene = raster::BuildRepresentation(mol, rep);
     const raster::Camera camera = raster::DefaultCamera(scene, a.width, a.height);
-    effects::RenderOptions options;
-    options.ssaa = a.ssaa;
+    effects::RenderOptions options = a.options;
+    if (options.ao != effects::AoMode::kNone) options.shading = effects::AoShading();
+    for (const effects::PlannedPass& p : effects::PlanPasses(options))
+      if (!gl::Mirrors(p.id)) throw std::runtime_error(std::string("the pass '") + p.name + "' (" +
+                                                       effects::Pass(p.id).enabledBy + ") is not mirrored in GL");
 
     gl::FrameRenderer renderer;
     std::printf("GL: %s | %s | LP_NUM_THREADS=%s\n", context->renderer().c_str(),
                 context->version().c_str(), std::getenv("LP_NUM_THREADS") ? std::getenv("LP_NUM_THREADS") : "(unset)");
     std::printf("scene: %s, %s, %zu primitives, %dx%d, ssaa %d\n", a.molecule.c_str(), a.style.c_str(),
-                scene.size(), a.width, a.height, a.ssaa);
+                scene.size(), a.width, a.height, options.ssaa);
+    std::printf("passes:");
+    for (const effects::PlannedPass& p : effects::PlanPasses(options)) std::printf(" [%s]", p.name);
+    std::printf("\n");
     const gl::BackendReport r = gl::CompareBackends(renderer, scene, camera, options);
     for (const gl::BufferComparison& c : r.buffers) {
       std::fputs(gl::FormatComparison(c).c_str(), stdout);

@@ -16,6 +16,7 @@
 
 #include <gtest/gtest.h>
 
+#include "effects/pass_list.h"
 #include "gl/compare.h"
 #include "gl/detail/passes.h"
 #include "gl_test_context.h"
@@ -340,6 +341,26 @@ TEST(Comparison, DetectsASmallRadiusChange) {
   ASSERT_GT(changed[1].compared, 1000u);
   EXPECT_LT(changed[1].equal, same[1].equal) << "depth did not change";
   EXPECT_GT(changed[1].maxDifference, kDepthMaxUlp);
+  // The report names the first pixel that differs, and it does differ there.
+  int x = -1, y = -1;
+  ASSERT_TRUE(changed[1].FirstDifference(x, y));
+  EXPECT_TRUE(changed[1].differs[size_t(y) * size_t(changed[1].width) + size_t(x)]);
+  for (size_t i = 0; i < size_t(y) * size_t(changed[1].width) + size_t(x); ++i) EXPECT_FALSE(changed[1].differs[i]);
+  EXPECT_NE(FormatComparison(changed[1]).find("first differs at pixel (" + std::to_string(x) + ", " +
+                                              std::to_string(y) + ")"),
+            std::string::npos);
+  EXPECT_FALSE(same[1].FirstDifference(x, y));
+  EXPECT_EQ(FormatComparison(same[1]).find("first differs"), std::string::npos);
+}
+
+// The GL mirror and the pass registry agree: every pass the mirror claims is a registered
+// unit, and every registered unit's CPU body exists; the passes still CPU-only are the ones
+// gl/README.md lists.
+TEST(Mirror, ThePassListAndTheGlMirrorAgree) {
+  std::vector<std::string> cpuOnly;
+  for (const effects::PassUnit* unit : effects::PassRegistry())
+    if (!Mirrors(unit->id)) cpuOnly.push_back(unit->name);
+  EXPECT_EQ(cpuOnly, (std::vector<std::string>{"reference ao", "depth halos", "halo pyramid", "halos"}));
 }
 
 }  // namespace
