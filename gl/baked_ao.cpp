@@ -7,24 +7,19 @@
 #include "common/check.h"
 #include "gl/detail/passes.h"
 #include "gl/gl_api.h"
-#include "gl/prim_layout.h"
 #include "gl/program.h"
 
 namespace softmol::gl::detail {
 
-void BakedAoPass::Create() {
-  program = BuildProgram("gl/shaders/fullscreen.vert", "gl/shaders/baked_ao.frag", PrimLayoutDefines());
-  glCreateFramebuffers(1, &fbo);
-}
+void BakedAoPass::Create() { program = BuildFullscreenProgram("gl/shaders/baked_ao.frag"); }
 
 void BakedAoPass::Release() {
   if (program == 0) return;
   glDeleteProgram(program);
-  glDeleteFramebuffers(1, &fbo);
-  if (target != 0) glDeleteTextures(1, &target);
   if (atlasTexture != 0) glDeleteTextures(1, &atlasTexture);
-  program = fbo = target = atlasTexture = 0;
-  width = height = atlasSide = 0;
+  program = atlasTexture = 0;
+  atlasSide = 0;
+  target.Release();
 }
 
 void BakedAoPass::Upload(const ao::AoAtlas& atlas) {
@@ -47,14 +42,7 @@ void BakedAoPass::Upload(const ao::AoAtlas& atlas) {
 
 void BakedAoPass::Run(const GBufferTargets& g, std::vector<float>& accessibility) {
   SOFTMOL_CHECK(atlasTexture != 0 && g.color[kAttPrimitiveId] != 0 && g.color[kAttSurface] != 0);
-  if (g.width != width || g.height != height || target == 0) {
-    if (target != 0) glDeleteTextures(1, &target);
-    glCreateTextures(GL_TEXTURE_2D, 1, &target);
-    glTextureStorage2D(target, 1, GL_R32F, g.width, g.height);
-    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, target, 0);
-    width = g.width;
-    height = g.height;
-  }
+  target.Resize(g.width, g.height);
   const GLuint p = program;
   const auto integer = [p](const char* name, int v) { glProgramUniform1i(p, glGetUniformLocation(p, name), v); };
   glProgramUniform1ui(p, glGetUniformLocation(p, "uSphereCount"), GLuint(layout.sphereCount));
@@ -68,10 +56,8 @@ void BakedAoPass::Run(const GBufferTargets& g, std::vector<float>& accessibility
   glBindTextureUnit(0, g.color[kAttPrimitiveId]);
   glBindTextureUnit(1, g.color[kAttSurface]);
   glBindTextureUnit(2, atlasTexture);
-  DrawFullscreen(p, fbo, g.width, g.height);
-  accessibility.resize(size_t(g.width) * size_t(g.height));
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glGetTextureImage(target, 0, GL_RED, GL_FLOAT, GLsizei(accessibility.size() * sizeof(float)), accessibility.data());
+  DrawFullscreen(p, target.fbo, g.width, g.height);
+  target.ReadBack(accessibility);
 }
 
 }  // namespace softmol::gl::detail

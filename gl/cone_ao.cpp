@@ -5,25 +5,21 @@
 #include "common/check.h"
 #include "gl/detail/passes.h"
 #include "gl/gl_api.h"
-#include "gl/prim_layout.h"
 #include "gl/program.h"
 
 namespace softmol::gl::detail {
 
 void ConeAoPass::Create() {
-  program = BuildProgram("gl/shaders/fullscreen.vert", "gl/shaders/cone_ao.frag", PrimLayoutDefines());
-  glCreateFramebuffers(1, &fbo);
+  program = BuildFullscreenProgram("gl/shaders/cone_ao.frag");
   glCreateBuffers(1, &pyramidBuffer);
 }
 
 void ConeAoPass::Release() {
   if (program == 0) return;
   glDeleteProgram(program);
-  glDeleteFramebuffers(1, &fbo);
   glDeleteBuffers(1, &pyramidBuffer);
-  if (target != 0) glDeleteTextures(1, &target);
-  program = fbo = target = pyramidBuffer = 0;
-  width = height = 0;
+  program = pyramidBuffer = 0;
+  target.Release();
 }
 
 void ConeAoPass::Upload(const ao::OccupancyPyramid& pyramid) {
@@ -44,14 +40,7 @@ void ConeAoPass::Run(const GBufferTargets& g, const raster::Camera& camera, cons
                      const ao::ConeAoOptions& options, std::vector<float>& accessibility) {
   SOFTMOL_CHECK(camera.width == g.width && camera.height == g.height);
   SOFTMOL_CHECK(levelStart.size() == pyramid.levels.size());
-  if (g.width != width || g.height != height || target == 0) {
-    if (target != 0) glDeleteTextures(1, &target);
-    glCreateTextures(GL_TEXTURE_2D, 1, &target);
-    glTextureStorage2D(target, 1, GL_R32F, g.width, g.height);
-    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, target, 0);
-    width = g.width;
-    height = g.height;
-  }
+  target.Resize(g.width, g.height);
   const ao::detail::ConeConstants k = ao::detail::MakeConeConstants(pyramid, camera, options, g.width);
   const GLuint p = program;
   const auto loc = [p](const char* name) { return glGetUniformLocation(p, name); };
@@ -77,10 +66,8 @@ void ConeAoPass::Run(const GBufferTargets& g, const raster::Camera& camera, cons
   glBindTextureUnit(0, g.color[kAttDepth]);
   glBindTextureUnit(1, g.color[kAttNormal]);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, pyramidBuffer);
-  DrawFullscreen(p, fbo, g.width, g.height);
-  accessibility.resize(size_t(g.width) * size_t(g.height));
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glGetTextureImage(target, 0, GL_RED, GL_FLOAT, GLsizei(accessibility.size() * sizeof(float)), accessibility.data());
+  DrawFullscreen(p, target.fbo, g.width, g.height);
+  target.ReadBack(accessibility);
 }
 
 }  // namespace softmol::gl::detail

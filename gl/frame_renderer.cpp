@@ -163,8 +163,7 @@ GlFrameStats FrameRenderer::RenderFrame(const raster::PrimitiveScene& scene,
       impl_->shadows.Run(impl_->gbuffer, cam, o.shadow, impl_->shadow);
       CheckGl("the shadow pass");
     } else if (pass.id == effects::PassId::kOutlines) {
-      impl_->outlines.Run(impl_->gbuffer, cam, o.outline);
-      impl_->outlines.ReadBack(impl_->outline);
+      impl_->outlines.Run(impl_->gbuffer, cam, o.outline, impl_->outline);
       CheckGl("the outline pass");
     } else if (pass.id == effects::PassId::kShading) {
       // Lines, caps and the depth cue need only the G-buffer; outlines come from their pass.

@@ -4,7 +4,9 @@
 #include <map>
 #include <stdexcept>
 
+#include "gl/detail/passes.h"
 #include "gl/gl_api.h"
+#include "gl/prim_layout.h"
 #include "gl/gl_shader_sources.h"  // generated: detail::kEmbeddedSources
 
 namespace softmol::gl {
@@ -123,5 +125,37 @@ void DrawFullscreen(uint32_t program, uint32_t fbo, int width, int height) {
   glDeleteVertexArrays(1, &vao);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
+
+namespace detail {
+
+uint32_t BuildFullscreenProgram(const char* fragmentPath) {
+  return BuildProgram("gl/shaders/fullscreen.vert", fragmentPath, PrimLayoutDefines());
+}
+
+void PlaneTarget::Resize(int w, int h) {
+  if (w == width && h == height && texture != 0) return;
+  if (fbo == 0) glCreateFramebuffers(1, &fbo);
+  if (texture != 0) glDeleteTextures(1, &texture);
+  glCreateTextures(GL_TEXTURE_2D, 1, &texture);
+  glTextureStorage2D(texture, 1, GL_R32F, w, h);
+  glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, texture, 0);
+  width = w;
+  height = h;
+}
+
+void PlaneTarget::Release() {
+  if (texture != 0) glDeleteTextures(1, &texture);
+  if (fbo != 0) glDeleteFramebuffers(1, &fbo);
+  fbo = texture = 0;
+  width = height = 0;
+}
+
+void PlaneTarget::ReadBack(std::vector<float>& plane) const {
+  plane.resize(size_t(width) * size_t(height));
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glGetTextureImage(texture, 0, GL_RED, GL_FLOAT, GLsizei(plane.size() * sizeof(float)), plane.data());
+}
+
+}  // namespace detail
 
 }  // namespace softmol::gl

@@ -6,24 +6,17 @@
 #include "common/check.h"
 #include "gl/detail/passes.h"
 #include "gl/gl_api.h"
-#include "gl/prim_layout.h"
 #include "gl/program.h"
 
 namespace softmol::gl::detail {
 
-void ShadowPass::Create() {
-  program = BuildProgram("gl/shaders/fullscreen.vert", "gl/shaders/shadows.frag", PrimLayoutDefines());
-  glCreateFramebuffers(1, &fbo);
-}
+void ShadowPass::Create() { program = BuildFullscreenProgram("gl/shaders/shadows.frag"); }
 
 void ShadowPass::Release() {
-  if (program == 0) return;
-  glDeleteProgram(program);
-  glDeleteFramebuffers(1, &fbo);
-  if (target != 0) glDeleteTextures(1, &target);
+  if (program != 0) glDeleteProgram(program);
+  program = 0;
+  target.Release();
   map.Release();
-  program = fbo = target = 0;
-  width = height = 0;
 }
 
 void ShadowPass::RenderMap(TileKernelPass& kernel, const raster::PrimitiveScene& scene, const raster::Camera& eye,
@@ -48,14 +41,7 @@ void ShadowPass::Run(const GBufferTargets& g, const raster::Camera& camera, cons
     visibility.assign(size_t(g.width) * size_t(g.height), 1.0f);
     return;
   }
-  if (g.width != width || g.height != height || target == 0) {
-    if (target != 0) glDeleteTextures(1, &target);
-    glCreateTextures(GL_TEXTURE_2D, 1, &target);
-    glTextureStorage2D(target, 1, GL_R32F, g.width, g.height);
-    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, target, 0);
-    width = g.width;
-    height = g.height;
-  }
+  target.Resize(g.width, g.height);
   const effects::detail::ShadowConstants k = effects::detail::MakeShadowConstants(light, camera, options, g.width);
   const GLuint p = program;
   const auto number = [p](const char* name, float v) { glProgramUniform1f(p, glGetUniformLocation(p, name), v); };
@@ -80,10 +66,8 @@ void ShadowPass::Run(const GBufferTargets& g, const raster::Camera& camera, cons
   glBindTextureUnit(0, g.color[kAttDepth]);
   glBindTextureUnit(1, g.color[kAttNormal]);
   glBindTextureUnit(2, map.color[kAttDepth]);
-  DrawFullscreen(p, fbo, g.width, g.height);
-  visibility.resize(size_t(g.width) * size_t(g.height));
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glGetTextureImage(target, 0, GL_RED, GL_FLOAT, GLsizei(visibility.size() * sizeof(float)), visibility.data());
+  DrawFullscreen(p, target.fbo, g.width, g.height);
+  target.ReadBack(visibility);
 }
 
 }  // namespace softmol::gl::detail

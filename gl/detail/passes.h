@@ -24,6 +24,18 @@ namespace softmol::gl::detail {
 // kAttEdges: RG32F, (line, capped) of contour lines and near-plane caps (raster::kLine, kCapped).
 enum Attachment { kAttDepth = 0, kAttNormal, kAttBaseColor, kAttPrimitiveId, kAttSurface, kAttEdges, kAttCount };
 
+// One R32F plane at G-buffer resolution that a per-sample pass draws into (gl/program.cpp).
+struct PlaneTarget {
+  uint32_t fbo = 0, texture = 0;
+  int width = 0, height = 0;
+  void Resize(int w, int h);  // (re)allocates only when the size changes
+  void Release();
+  void ReadBack(std::vector<float>& plane) const;  // G-buffer order (row 0 at the bottom)
+};
+
+// A fullscreen program on gl/shaders/fullscreen.vert with the shared formulas and `fragmentPath`.
+uint32_t BuildFullscreenProgram(const char* fragmentPath);
+
 struct GBufferTargets {
   int width = 0, height = 0;
   uint32_t channels = 0;  // raster::GBufferChannel bits that have a texture (| kDepth)
@@ -74,21 +86,21 @@ struct ShadingPass {
 // Sobel silhouette and crease lines (↔ effects/outlines.cpp): one R32F strength per G-buffer
 // sample, from the depth, normal and primitive-id attachments.
 struct OutlinesPass {
-  uint32_t program = 0, fbo = 0, target = 0;
-  int width = 0, height = 0;
+  uint32_t program = 0;
+  PlaneTarget target;
   void Create();
   void Release();
   // `camera` is the G-buffer's (sample resolution); options must be valid.
-  void Run(const GBufferTargets& g, const raster::Camera& camera, const effects::OutlineOptions& options);
-  // One strength per sample, G-buffer order (row 0 at the bottom).
-  void ReadBack(std::vector<float>& strength) const;
+  // One strength per sample of `g`, read back into `strength` (G-buffer order).
+  void Run(const GBufferTargets& g, const raster::Camera& camera, const effects::OutlineOptions& options,
+           std::vector<float>& strength);
 };
 
 // Soft shadows (↔ effects/shadows.cpp): the light's depth map drawn by the tile-kernel pass,
 // then PCF with the pre-test, one R32F visibility per G-buffer sample.
 struct ShadowPass {
-  uint32_t program = 0, fbo = 0, target = 0;
-  int width = 0, height = 0;
+  uint32_t program = 0;
+  PlaneTarget target;
   GBufferTargets map;       // the light's depth
   effects::ShadowMap light;  // its camera (effects::SetUpShadowLight) and the map read back
   void Create();
@@ -104,8 +116,8 @@ struct ShadowPass {
 // Cone-traced AO (↔ ao/cone_trace.cpp): the CPU's occupancy pyramid uploaded as one storage
 // buffer, then one R32F accessibility per G-buffer sample.
 struct ConeAoPass {
-  uint32_t program = 0, fbo = 0, target = 0, pyramidBuffer = 0;
-  int width = 0, height = 0;
+  uint32_t program = 0, pyramidBuffer = 0;
+  PlaneTarget target;
   std::vector<int> levelStart;  // first value of each level in the buffer
   void Create();
   void Release();
@@ -119,8 +131,9 @@ struct ConeAoPass {
 // The baked-AO lookup (↔ ao/shadow_bake.cpp LookupBakedAo): the CPU's atlas uploaded as an
 // R32F texture, then one accessibility per G-buffer sample of an atom or bond.
 struct BakedAoPass {
-  uint32_t program = 0, fbo = 0, target = 0, atlasTexture = 0;
-  int width = 0, height = 0, atlasSide = 0;
+  uint32_t program = 0, atlasTexture = 0;
+  int atlasSide = 0;
+  PlaneTarget target;
   ao::AtlasLayout layout;  // of the uploaded atlas
   void Create();
   void Release();
