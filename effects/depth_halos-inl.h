@@ -11,25 +11,10 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "effects/depth_halos.h"
+
 namespace softmol::effects::detail {
 
-// One atom's halo disc, eye space, camera-relative (made so in double by the setup).
-struct HaloDisc {
-  float cx, cy, cz;
-  float rr;              // r²: the atom's own silhouette
-  float haloR, haloRR;   // r + size and its square: the disc's rim
-  float discDepth;       // −cz, the depth the disc is drawn at
-  int32_t x0, y0, x1, y1;  // inclusive pixel box, clamped to the frame
-};
-
-struct HaloFrame {
-  float halfWidth, halfHeight, pixelScale;
-  bool ortho;
-  float invSize, maxGap, invMaxGap, strength;
-};
-
-// Fixed-point 1.0 of the halo accumulators (effects/shared/depth_halo.inc DepthHaloQuantize).
-inline constexpr uint32_t kDepthHaloOne = 65536;
 // Padding of each band row beyond the frame width, in samples: one vector of the widest target
 // (2048-bit SVE), so a masked full vector starting at any x < width stays inside the row.
 inline constexpr int kDepthHaloRowPad = 64;

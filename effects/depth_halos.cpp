@@ -127,6 +127,38 @@ void DepthHaloBand(const HaloFrame& f, const HaloDisc* discs, const uint32_t* li
 using BandFn = void (*)(const HaloFrame&, const HaloDisc*, const uint32_t*, size_t,
                         const HaloBand&);
 
+}  // namespace
+
+namespace detail {
+
+DepthHaloSetup PrepareDepthHalos(const raster::PrimitiveScene& scene, const raster::Camera& cam,
+                                 const DepthHaloOptions& o) {
+  const raster::detail::ViewSetup view = raster::detail::MakeViewSetup(cam, scene);
+  const raster::detail::FrameConstants fc = raster::detail::MakeFrameConstants(view, 0);
+  DepthHaloSetup s;
+  HaloFrame& f = s.frame;
+  f.halfWidth = fc.halfWidth, f.halfHeight = fc.halfHeight, f.pixelScale = fc.pixelScale;
+  f.ortho = fc.ortho;
+  f.invSize = 1.0f / o.size;
+  f.maxGap = o.maxGap;
+  f.invMaxGap = 1.0f / o.maxGap;
+  f.strength = o.strength;
+  // Each sphere writes only its own slot.
+  const raster::SphereSet& spheres = scene.spheres;
+  const size_t n = spheres.size();
+  s.discs.resize(n);
+  s.drawn.resize(n);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 2048), [&](const auto& range) {
+    for (size_t i = range.begin(); i != range.end(); ++i)
+      s.drawn[i] = SetupDisc(spheres, i, view, double(o.size), s.discs[i]) ? 1 : 0;
+  });
+  return s;
+}
+
+}  // namespace detail
+
+namespace {
+
 void RunDepthHalos(const raster::PrimitiveScene& scene, const raster::Camera& camera,
                    const raster::GBuffer& g, const DepthHaloOptions& o, std::span<float> halo,
                    bool scalar) {
@@ -139,25 +171,11 @@ void RunDepthHalos(const raster::PrimitiveScene& scene, const raster::Camera& ca
 
   raster::Camera cam = camera;
   cam.width = width, cam.height = height;
-  const raster::detail::ViewSetup view = raster::detail::MakeViewSetup(cam, scene);
-  const raster::detail::FrameConstants fc = raster::detail::MakeFrameConstants(view, 0);
-  HaloFrame f;
-  f.halfWidth = fc.halfWidth, f.halfHeight = fc.halfHeight, f.pixelScale = fc.pixelScale;
-  f.ortho = fc.ortho;
-  f.invSize = 1.0f / o.size;
-  f.maxGap = o.maxGap;
-  f.invMaxGap = 1.0f / o.maxGap;
-  f.strength = o.strength;
-
-  // Setup: each sphere writes only its own slot.
-  const raster::SphereSet& spheres = scene.spheres;
-  const size_t n = spheres.size();
-  std::vector<HaloDisc> discs(n);
-  std::vector<uint8_t> drawn(n);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 2048), [&](const auto& range) {
-    for (size_t i = range.begin(); i != range.end(); ++i)
-      drawn[i] = SetupDisc(spheres, i, view, double(o.size), discs[i]) ? 1 : 0;
-  });
+  const detail::DepthHaloSetup setup = detail::PrepareDepthHalos(scene, cam, o);
+  const HaloFrame& f = setup.frame;
+  const std::vector<HaloDisc>& discs = setup.discs;
+  const std::vector<uint8_t>& drawn = setup.drawn;
+  const size_t n = discs.size();
 
   // Binning, serial and in sphere order (counting sort). The sum is exact, so the order within
   // a band does not change the result; a fixed order still keeps every run identical.
@@ -213,6 +231,16 @@ void RunDepthHalos(const raster::PrimitiveScene& scene, const raster::Camera& ca
 }
 
 }  // namespace
+
+bool DepthHaloCamera(const raster::PrimitiveScene& scene, const raster::Camera& samples, float nearClip,
+                     raster::Camera& view) {
+  view = samples;
+  if (nearClip > 0) {
+    if (view.nearPlane <= 0 || view.farPlane <= 0) raster::FitNearFar(view, scene);
+    view.nearPlane = std::max(view.nearPlane, double(nearClip));
+  }
+  return view.nearPlane < view.farPlane || view.nearPlane <= 0;
+}
 
 bool ValidDepthHaloOptions(const DepthHaloOptions& o) {
   return std::isfinite(o.size) && o.size > 0.0f && o.size <= 1000.0f && std::isfinite(o.strength) &&

@@ -11,7 +11,9 @@
 // Deterministic: the same bytes for any thread count, SIMD target and order of the spheres.
 #pragma once
 
+#include <cstdint>
 #include <span>
+#include <vector>
 
 #include "raster/camera.h"
 #include "raster/gbuffer.h"
@@ -54,4 +56,40 @@ void ComputeDepthHalosScalar(const raster::PrimitiveScene& scene, const raster::
                              const raster::GBuffer& gbuffer, const DepthHaloOptions& options,
                              std::span<float> halo);
 
+// The camera the halo discs are drawn with for a sample camera and a near clip (atoms cut
+// away by the clip cast no halo: their discs are clipped with them); false when the clip plane
+// lies beyond the whole molecule (no disc is drawn, every halo is 0).
+bool DepthHaloCamera(const raster::PrimitiveScene& scene, const raster::Camera& samples, float nearClip,
+                     raster::Camera& view);
+
+namespace detail {
+
+// One atom's halo disc, eye space, camera-relative (made so in double by the setup).
+struct HaloDisc {
+  float cx, cy, cz;
+  float rr;              // r²: the atom's own silhouette
+  float haloR, haloRR;   // r + size and its square: the disc's rim
+  float discDepth;       // −cz, the depth the disc is drawn at
+  int32_t x0, y0, x1, y1;  // inclusive pixel box, clamped to the frame
+};
+
+struct HaloFrame {
+  float halfWidth, halfHeight, pixelScale;
+  bool ortho;
+  float invSize, maxGap, invMaxGap, strength;
+};
+
+// Fixed-point 1.0 of the halo accumulators (effects/shared/depth_halo.inc DepthHaloQuantize).
+inline constexpr uint32_t kDepthHaloOne = 65536;
+struct DepthHaloSetup {
+  HaloFrame frame;
+  std::vector<HaloDisc> discs;  // one per sphere
+  std::vector<uint8_t> drawn;   // 1 where the sphere's disc is drawn
+};
+// The per-frame constants and every sphere's disc for a width × height sample camera: what
+// both backends draw (the GL mirror, gl/depth_halos.cpp, uploads it).
+DepthHaloSetup PrepareDepthHalos(const raster::PrimitiveScene& scene, const raster::Camera& camera,
+                                 const DepthHaloOptions& options);
+
+}  // namespace detail
 }  // namespace softmol::effects

@@ -240,6 +240,9 @@ BackendReport CompareBackends(FrameRenderer& renderer, const raster::PrimitiveSc
   if (options.ao != effects::AoMode::kNone)
     r.buffers.push_back(CompareSamplePlane("ao", cpuResources.ao, renderer.Plane(effects::kBufAo), cpu.width,
                                            cpu.height));
+  if (options.depthHalos)
+    r.buffers.push_back(CompareSamplePlane("depth halo", cpuResources.depthHalo, renderer.Plane(effects::kBufDepthHalo),
+                                           cpu.width, cpu.height));
   if (options.outlines)
     r.buffers.push_back(CompareSamplePlane("outline", cpuResources.outline, renderer.Plane(effects::kBufOutline),
                                            cpu.width, cpu.height));

@@ -19,6 +19,7 @@ struct FrameRenderer::Impl {
   detail::ShadowPass shadows;
   detail::ConeAoPass coneAo;
   detail::BakedAoPass bakedAo;
+  detail::DepthHalosPass depthHalos;
   ao::AoAtlas atlas;  // baked on the CPU (the bake is not mirrored), uploaded when re-baked
   uint64_t atlasKey = 0;
   bool atlasBaked = false;
@@ -26,7 +27,7 @@ struct FrameRenderer::Impl {
   detail::GBufferTargets gbuffer;
   // Per-sample results read back, for the shading pass (which uploads its inputs) and for the
   // comparison.
-  std::vector<float> outline, shadow, ao;
+  std::vector<float> outline, shadow, ao, depthHalo;
   raster::GBuffer samples;  // read-back scratch for the AOVs
 };
 
@@ -71,6 +72,7 @@ FrameRenderer::FrameRenderer() : impl_(std::make_unique<Impl>()) {
   impl_->shadows.Create();
   impl_->coneAo.Create();
   impl_->bakedAo.Create();
+  impl_->depthHalos.Create();
 }
 
 FrameRenderer::~FrameRenderer() {
@@ -80,6 +82,7 @@ FrameRenderer::~FrameRenderer() {
   impl_->shadows.Release();
   impl_->coneAo.Release();
   impl_->bakedAo.Release();
+  impl_->depthHalos.Release();
   impl_->gbuffer.Release();
 }
 
@@ -102,6 +105,7 @@ bool Mirrors(effects::PassId pass) {
   return pass == PassId::kGBuffer || pass == PassId::kAoBake || pass == PassId::kBakedAoLookup ||
          pass == PassId::kOccupancyPyramid || pass == PassId::kConeAo ||
          pass == PassId::kShadowMap || pass == PassId::kShadows || pass == PassId::kOutlines ||
+         pass == PassId::kDepthHalos ||
          pass == PassId::kShading || pass == PassId::kAovs;
 }
 
@@ -165,11 +169,19 @@ GlFrameStats FrameRenderer::RenderFrame(const raster::PrimitiveScene& scene,
     } else if (pass.id == effects::PassId::kOutlines) {
       impl_->outlines.Run(impl_->gbuffer, cam, o.outline, impl_->outline);
       CheckGl("the outline pass");
+    } else if (pass.id == effects::PassId::kDepthHalos) {
+      raster::Camera view;
+      if (effects::DepthHaloCamera(scene, cam, o.nearClip, view))
+        impl_->depthHalos.Run(scene, view, impl_->gbuffer, o.depthHalo, impl_->depthHalo);
+      else
+        impl_->depthHalos.Skip(impl_->gbuffer, impl_->depthHalo);
+      CheckGl("the depth halo pass");
     } else if (pass.id == effects::PassId::kShading) {
       // Lines, caps and the depth cue need only the G-buffer; outlines come from their pass.
       effects::ShadeInputs inputs = effects::MakeShadeInputs(o, scene, cam);
       if (o.outlines) inputs.outline = impl_->outline;
       if (o.shadows) inputs.shadow = impl_->shadow;
+      if (o.depthHalos) inputs.halo = impl_->depthHalo;
       if (o.ao != effects::AoMode::kNone) inputs.ambientOcclusion = impl_->ao;
       impl_->shading.Run(impl_->gbuffer, o.ssaa, o.shading, effects::Backdrop{o.background, o.transparent},
                          &inputs);
@@ -201,6 +213,7 @@ const std::vector<float>& FrameRenderer::Plane(effects::FrameBuffer buffer) cons
     case effects::kBufOutline: return impl_->outline;
     case effects::kBufShadow: return impl_->shadow;
     case effects::kBufAo: return impl_->ao;
+    case effects::kBufDepthHalo: return impl_->depthHalo;
     case effects::kBufShadowMap: return impl_->shadows.light.map.depth;
     default: return none;
   }

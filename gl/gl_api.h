@@ -17,10 +17,13 @@
   X(glAttachShader) \
   X(glBindBufferBase) \
   X(glBindFramebuffer) \
+  X(glBindImageTexture) \
   X(glBindTextureUnit) \
   X(glBindVertexArray) \
   X(glClearNamedFramebufferfv) \
   X(glClearNamedFramebufferuiv) \
+  X(glClearTexImage) \
+  X(glColorMask) \
   X(glCompileShader) \
   X(glCreateBuffers) \
   X(glCreateFramebuffers) \
@@ -53,6 +56,7 @@
   X(glGetTextureImage) \
   X(glGetUniformLocation) \
   X(glLinkProgram) \
+  X(glMemoryBarrier) \
   X(glNamedBufferData) \
   X(glNamedBufferSubData) \
   X(glNamedFramebufferDrawBuffers) \

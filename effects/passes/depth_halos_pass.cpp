@@ -9,15 +9,10 @@ namespace {
 
 void RunDepthHalos(FrameContext& c) {
   const RenderOptions& o = c.options;
-  // Atoms cut away by the near clip cast no halo (their discs are clipped with them).
-  raster::Camera view = c.camera;
-  if (o.nearClip > 0) {
-    if (view.nearPlane <= 0 || view.farPlane <= 0) raster::FitNearFar(view, c.scene);
-    view.nearPlane = std::max(view.nearPlane, double(o.nearClip));
-  }
+  raster::Camera view;
   std::vector<float>& halo = c.res.depthHalo;
   halo.resize(c.Samples());
-  if (view.nearPlane < view.farPlane || view.nearPlane <= 0)
+  if (DepthHaloCamera(c.scene, c.camera, o.nearClip, view))
     ComputeDepthHalos(c.scene, view, c.res.gbuffer, o.depthHalo, halo);
   else  // the clip plane is beyond the molecule: every disc is cut away
     std::fill(halo.begin(), halo.end(), 0.0f);

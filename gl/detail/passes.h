@@ -1,7 +1,8 @@
 // gl/detail/passes.h — the GL passes behind gl::FrameRenderer, one file per CPU pass with the
 // same stem: gl/tile_kernel.cpp (↔ raster/tile_kernel*.cpp), gl/shading.cpp (↔ effects/shading.cpp),
 // gl/outlines.cpp (↔ effects/outlines.cpp), gl/shadows.cpp (↔ effects/shadows.cpp),
-// gl/cone_ao.cpp (↔ ao/cone_trace.cpp), gl/baked_ao.cpp (↔ the lookup of ao/shadow_bake.cpp).
+// gl/cone_ao.cpp (↔ ao/cone_trace.cpp), gl/baked_ao.cpp (↔ the lookup of ao/shadow_bake.cpp),
+// gl/depth_halos.cpp (↔ effects/depth_halos.cpp).
 #pragma once
 
 #include <cstdint>
@@ -10,6 +11,7 @@
 #include "ao/cone_trace.h"
 #include "ao/occupancy_pyramid.h"
 #include "ao/patch_atlas.h"
+#include "effects/depth_halos.h"
 #include "effects/outlines.h"
 #include "effects/shading.h"
 #include "effects/shadows.h"
@@ -140,6 +142,21 @@ struct BakedAoPass {
   // Throws std::runtime_error when the atlas exceeds the driver's texture size.
   void Upload(const ao::AoAtlas& atlas);
   void Run(const GBufferTargets& g, std::vector<float>& accessibility);
+};
+
+// Depth-aware halos (↔ effects/depth_halos.cpp): the CPU's disc setup, one instanced quad per
+// disc into a saturating R32UI accumulator, resolved to one R32F opacity per sample.
+struct DepthHalosPass {
+  uint32_t program = 0, resolve = 0, accumulator = 0;
+  uint32_t buffers[2] = {};  // disc boxes, disc constants
+  int accWidth = 0, accHeight = 0;
+  PlaneTarget target;
+  void Create();
+  void Release();
+  // `view` is effects::DepthHaloCamera's; the halos of every sample of `g`, read back.
+  void Run(const raster::PrimitiveScene& scene, const raster::Camera& view, const GBufferTargets& g,
+           const effects::DepthHaloOptions& options, std::vector<float>& halo);
+  void Skip(const GBufferTargets& g, std::vector<float>& halo);  // no disc can be drawn
 };
 
 }  // namespace softmol::gl::detail

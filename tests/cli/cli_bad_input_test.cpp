@@ -85,7 +85,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"depth_cue_above_one", "render " + kPept + " -o %O --depth-cue 1.5", "--depth-cue"},
         BadCase{"odd_ao_directions", "render " + kPept + " -o %O --ao baked --ao-directions 7", "--ao-directions"},
         BadCase{"ao_patch_too_big", "render " + kPept + " -o %O --ao baked --ao-patch 4096 --ao-texture 64", "--ao-"},
-        BadCase{"depth_halos_on_gl_backend", "render " + kPept + " -o %O --backend gl --halos", "--halos"},
+        BadCase{"highlight_trail_on_gl_backend", "render '" + Data("md.pdb") + "' --trajectory '" + Data("md.xtc") +
+                                                     "' --frames 0:0 -o %O --backend gl --highlight ion --highlight-trail 2",
+                "--highlight"},
         BadCase{"info_missing", "info %D/missing.cif", "missing.cif"}),
     [](const testing::TestParamInfo<BadCase>& i) { return std::string(i.param.name); });
 
