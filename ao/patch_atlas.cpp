@@ -26,6 +26,7 @@ void LookupPatchesImpl(int kind, float w, float h, const float* texels, int32_t 
 HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
@@ -158,6 +159,21 @@ AtlasLayout MakeAtlasLayout(size_t spheres, size_t cylinders, const AtlasOptions
   l.rows = int((k + size_t(l.columns) - 1) / size_t(l.columns));
   l.cylinderHeight = c.h / o.cylindersPerPatch;
   return l;
+}
+
+AtlasOptions ChooseAtlas(size_t spheres, size_t cylinders, AtlasOptions o, int maxSide) {
+  o.patchSize = 0;
+  const int start = std::max(o.textureSide, 2);
+  for (int side = start; side <= maxSide; side *= 2) {
+    o.textureSide = side;
+    try {
+      if (MakeAtlasLayout(spheres, cylinders, o).patchSize >= kMinAutoPatch || side * 2 > maxSide) return o;
+    } catch (const std::invalid_argument&) {
+      if (side * 2 > maxSide) throw;  // not even the largest side fits
+    }
+  }
+  o.textureSide = start;
+  return o;
 }
 
 PatchRect SpherePatch(const AtlasLayout& l, size_t sphere) {

@@ -45,6 +45,14 @@ struct AtlasLayout {
 
 // Throws std::invalid_argument (naming the option) when the patches cannot fit.
 AtlasLayout MakeAtlasLayout(size_t spheres, size_t cylinders, const AtlasOptions& options);
+// When neither the texture side nor the patch size is given: the smallest power-of-two side
+// from options.textureSide (1024) up to maxSide whose automatic patches are at least
+// kMinAutoPatch texels, else the largest side that fits any patch (maxSide: 16384² floats is
+// 1 GiB, the memory bound; 1.03 M atoms get 8192² with 6-texel patches). Returns the options
+// with textureSide set; throws std::invalid_argument when not even maxSide fits.
+constexpr int kMinAutoPatch = 4;
+AtlasOptions ChooseAtlas(size_t spheres, size_t cylinders, AtlasOptions options, int maxSide = 16384);
+
 PatchRect SpherePatch(const AtlasLayout& layout, size_t sphere);
 PatchRect CylinderPatch(const AtlasLayout& layout, size_t cylinder);
 

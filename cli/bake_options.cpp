@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "ao/patch_atlas.h"
@@ -58,7 +59,18 @@ ao::BakeOptions MakeBakeOptions(const BakeFlags& f, const raster::PrimitiveScene
   o.depthBias = f.bias;
   o.atlas.patchSize = f.patch;
   o.atlas.sphereMap = f.sphereMap;
-  if (f.texture > 0) {
+  if (f.texture == 0 && f.patch == 0) {
+    // Neither given: an atlas that fits the structure (ao/patch_atlas.h ChooseAtlas), said when
+    // it is not the default 1024².
+    try {
+      o.atlas = ao::ChooseAtlas(scene.spheres.size(), scene.cylinders.size(), o.atlas);
+    } catch (const std::invalid_argument& e) {
+      throw io::InputError({"--ao-texture"}, e.what());
+    }
+    if (o.atlas.textureSide != ao::AtlasOptions{}.textureSide)
+      std::fprintf(stderr, "softmol: baked AO: a %d² atlas for %zu atoms and %zu bonds (--ao-texture to choose)\n",
+                   o.atlas.textureSide, scene.spheres.size(), scene.cylinders.size());
+  } else if (f.texture > 0) {
     o.atlas.textureSide = f.texture;
   } else if (f.patch > 0) {
     // Just enough square cells (n × n, or 3n × 2n for the cube map) for every patch.

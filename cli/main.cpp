@@ -1,41 +1,85 @@
-// cli/main.cpp — the `softmol` command. The only place that catches errors and exits:
-// bad input (io::InputError) prints one line naming the file/line/option and exits 2;
-// commands write outputs through temp-then-rename, so a failure leaves nothing half-written.
+// cli/main.cpp — the `softmol` command and its one error boundary: every exception ends here as
+// one line on stderr and an exit code (io/error.h): 2 bad input (io::InputError, a command line
+// CLI11 rejects), 3 internal error (io::InternalError or any other exception: gemmi, TBB,
+// OpenImageIO, the standard library), 4 out of memory. Commands write outputs through
+// temp-then-rename, so a failure leaves nothing half-written.
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <new>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
 #include "cli/commands.h"
 #include "io/error.h"
+#include "raster/simd_target.h"
 
-int main(int argc, char** argv) {
-  CLI::App app{"softmol — renders molecules on the CPU (quadric impostors, AO, edge cueing)"};
-  app.require_subcommand(1);
-  app.set_version_flag("--version", "softmol 0.1.0");
-  softmol::cli::InfoArgs info;
-  softmol::cli::AddInfoCommand(app, info);
-  softmol::cli::RenderCommand render(app);
-  softmol::cli::BakeCommand bake(app);
+namespace {
+
+using namespace softmol;
+
+constexpr const char* kFooter =
+    "Exit codes: 0 success; 2 bad input (a file, record, option or scene key: the message names "
+    "it); 3 internal error (not the input's fault); 4 out of memory.\n"
+    "SIMD: --simd TARGET (before or after the subcommand) or the environment variable "
+    "SOFTMOL_SIMD forces the target of every SIMD kernel (--simd wins); outputs are the same "
+    "bytes on every target. --version lists this CPU's targets.";
+
+std::string VersionText() {
+  std::string s = "softmol 0.1.0\nSIMD targets on this CPU (best first):";
+  for (const auto& t : raster::AvailableSimdTargets()) s += " " + t;
+  return s + "\nSIMD target in use: " + raster::ActiveSimdTarget();
+}
+
+int Run(CLI::App& app, int argc, char** argv, cli::InfoArgs& info, cli::RenderCommand& render,
+        cli::BakeCommand& bake) {
+  if (const char* env = std::getenv("SOFTMOL_SIMD"); env && *env)
+    raster::ForceSimdTarget(env, "SOFTMOL_SIMD");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);  // CLI11 names the option; exit code 0 only for --help/--version
+    // CLI11 prints the message naming the option; only --help/--version exit 0.
+    return app.exit(e) == 0 ? io::kExitOk : io::kExitBadInput;
   }
+  if (app.got_subcommand("info")) return cli::RunInfo(info);
+  if (app.got_subcommand("render")) return cli::RunRender(render.Args());
+  if (app.got_subcommand("bake")) return cli::RunBake(bake.Args());
+  return io::kExitBadInput;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
   try {
-    if (app.got_subcommand("info")) return softmol::cli::RunInfo(info);
-    if (app.got_subcommand("render")) return softmol::cli::RunRender(render.Args());
-    if (app.got_subcommand("bake")) return softmol::cli::RunBake(bake.Args());
-    return 1;
-  } catch (const softmol::io::InputError& e) {
+    CLI::App app{"softmol — renders molecules on the CPU (quadric impostors, AO, edge cueing)"};
+    app.require_subcommand(1);
+    app.footer(kFooter);
+    app.fallthrough();  // global options (--simd) also after the subcommand
+    app.set_version_flag("--version", VersionText);
+    app.add_option_function<std::string>(
+           "--simd", [](const std::string& t) { raster::ForceSimdTarget(t, "--simd"); },
+           "Force the SIMD target: scalar|ssse3|sse4|avx2|avx3|... (see --version)")
+        ->trigger_on_parse();
+    cli::InfoArgs info;
+    cli::AddInfoCommand(app, info);
+    cli::RenderCommand render(app);
+    cli::BakeCommand bake(app);
+    return Run(app, argc, argv, info, render, bake);
+  } catch (const io::InputError& e) {
     std::fprintf(stderr, "softmol: %s\n", e.what());
-    return 2;
+    return io::kExitBadInput;
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "softmol: out of memory\n");
-    return 3;
+    return io::kExitOutOfMemory;
+  } catch (const io::InternalError& e) {
+    std::fprintf(stderr, "softmol: %s\n", e.what());
+    return io::kExitInternal;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "softmol: error: %s\n", e.what());
-    return 1;
+    std::fprintf(stderr, "softmol: internal error: %s\n", e.what());
+    return io::kExitInternal;
+  } catch (...) {
+    std::fprintf(stderr, "softmol: internal error: unknown exception\n");
+    return io::kExitInternal;
   }
 }

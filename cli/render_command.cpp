@@ -327,11 +327,12 @@ int RunRender(const RenderArgs& a) {
     if (a.threads > 0) setenv("LP_NUM_THREADS", std::to_string(a.threads).c_str(), /*overwrite=*/0);
     std::string why;
     glContext = gl::Context::Create(why);
-    if (!glContext) throw io::InputError({"--backend"}, "gl: no EGL/OpenGL 4.5 context: " + why);
+    // No driver, or one that refuses the mirror: the machine's fault, not the input's.
+    if (!glContext) throw io::InternalError("--backend gl: no EGL/OpenGL 4.5 context: " + why);
     try {
       glRenderer = std::make_unique<gl::FrameRenderer>();
     } catch (const std::runtime_error& e) {  // a driver that rejects the GLSL
-      throw io::InputError({"--backend"}, std::string("gl: ") + e.what());
+      throw io::InternalError(std::string("--backend gl: the driver rejected the mirror: ") + e.what());
     }
   }
 #endif
@@ -341,7 +342,7 @@ int RunRender(const RenderArgs& a) {
       try {
         glRenderer->RenderFrame(drawn, view, ro, frame);
       } catch (const std::runtime_error& e) {  // a GL error (driver limit or mirror bug)
-        throw io::InputError({"--backend"}, std::string("gl: ") + e.what());
+        throw io::InternalError(std::string("--backend gl: ") + e.what());
       }
     } else {
       effects::RenderFrame(drawn, view, ro, frame, &resources);

@@ -4,7 +4,15 @@
 // + tolerance), so every partner of an atom lies in its own cell or one of the 26 around it.
 // Atoms are bucketed by a counting sort (O(n), no per-cell allocation). The cell edge grows
 // when the bounding box is so sparse that the grid would hold many more cells than atoms
-// (a structure with an outlier far away), so memory stays O(n).
+// (a hollow capsid), so memory stays O(n). The box is the robust one (the 0.1 % and 99.9 %
+// quantiles per axis) when the full box would make the grid sparse: a few far outliers are
+// clamped into the border cells (clamping is monotone, so every pair within one cell edge stays
+// in neighbouring cells) instead of coarsening the grid until everything shares one cell.
+//
+// Bounded work for any input: a cell takes at most kMaxCellAtoms atoms (the first ones by
+// index; real structures hold < 30 per cell) and an atom at most kMaxBonds distance bonds (the
+// first found in (i, j) order). Atoms past a cap take no further part, and one warning names
+// the first such atom: N atoms at one position (a broken model) cost O(N), not O(N²).
 //
 // Determinism: atoms are cut into fixed chunks of kChunk indices, independent of the thread
 // count; each chunk lists its pairs (i, j > i) in order of i, then j; chunks are concatenated
@@ -15,6 +23,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -28,17 +39,60 @@ namespace {
 
 constexpr size_t kChunk = 4096;
 constexpr double kMinBondLength = 0.4;  // Å; closer atoms are duplicates, not bonded
+constexpr uint32_t kMaxCellAtoms = 256;
+constexpr uint16_t kMaxBonds = 16;  // distance bonds per atom (real valences are <= 8)
 
 struct Grid {
   double minX = 0, minY = 0, minZ = 0, inv = 1;
   int64_t nx = 1, ny = 1, nz = 1;
   std::vector<uint32_t> cellStart;  // nx*ny*nz + 1 offsets into the packed atoms
 
+  // Clamped in double first: a far outlier must not overflow the integer conversion.
   int64_t Coord(double v, double lo, int64_t n) const {
-    const int64_t c = static_cast<int64_t>((v - lo) * inv);
-    return std::clamp<int64_t>(c, 0, n - 1);
+    const double t = (v - lo) * inv;
+    if (!(t > 0.0)) return 0;
+    return t >= double(n - 1) ? n - 1 : static_cast<int64_t>(t);
   }
 };
+
+double Cells(const double lo[3], const double hi[3], double cell) {
+  double cells = 1;
+  for (int a = 0; a < 3; ++a) cells *= std::floor((hi[a] - lo[a]) / cell) + 1;
+  return cells;
+}
+
+// Per axis, the coordinates at the 0.1 % and 99.9 % ranks of the included atoms.
+void RobustBox(const Molecule& mol, const std::vector<float>& radius, double lo[3], double hi[3]) {
+  const std::vector<double>* axes[3] = {&mol.x, &mol.y, &mol.z};
+  std::vector<double> v;
+  for (int a = 0; a < 3; ++a) {
+    v.clear();
+    for (size_t i = 0; i < radius.size(); ++i)
+      if (radius[i] >= 0.f) v.push_back((*axes[a])[i]);
+    const size_t k = v.size() / 1000;
+    std::nth_element(v.begin(), v.begin() + ptrdiff_t(k), v.end());
+    lo[a] = v[k];
+    std::nth_element(v.begin(), v.end() - 1 - ptrdiff_t(k), v.end());
+    hi[a] = v[v.size() - 1 - k];
+  }
+}
+
+std::string AtomLabel(const Molecule& mol, size_t i) {
+  std::string s = "atom " + std::to_string(i + 1);
+  if (i < mol.serial.size()) s += " (serial " + std::to_string(mol.serial[i]);
+  if (i < mol.atomName.size())
+    s += ", " + std::string(mol.atomName[i].data(), strnlen(mol.atomName[i].data(), 4));
+  if (i < mol.serial.size()) s += ")";
+  char at[96];
+  std::snprintf(at, sizeof at, " at (%.3f, %.3f, %.3f)", mol.x[i], mol.y[i], mol.z[i]);
+  return s + at;
+}
+
+// One line per cap that was hit, naming the first atom it hit (deterministic: index order).
+void WarnCapped(const Molecule& mol, size_t atom, const std::string& what) {
+  std::fprintf(stderr, "softmol: warning: %s: %s %s\n", mol.sourcePath.empty() ? "molecule" : mol.sourcePath.c_str(),
+               AtomLabel(mol, atom).c_str(), what.c_str());
+}
 
 }  // namespace
 
@@ -72,28 +126,38 @@ size_t ComputeDistanceBonds(Molecule& mol, const BondOptions& options) {
   Grid grid;
   double cell = 2.0 * maxRadius + tolerance;
   const double maxCells = 8.0 * double(included) + 65536.0;
-  for (;;) {
-    const double cx = std::floor((hi[0] - lo[0]) / cell) + 1;
-    const double cy = std::floor((hi[1] - lo[1]) / cell) + 1;
-    const double cz = std::floor((hi[2] - lo[2]) / cell) + 1;
-    if (cx * cy * cz <= maxCells) {
-      grid.nx = int64_t(cx), grid.ny = int64_t(cy), grid.nz = int64_t(cz);
-      break;
-    }
-    cell *= 1.125;
-  }
+  if (Cells(lo, hi, cell) > maxCells) RobustBox(mol, radius, lo, hi);
+  while (Cells(lo, hi, cell) > maxCells) cell *= 1.125;
+  grid.nx = int64_t(std::floor((hi[0] - lo[0]) / cell) + 1);
+  grid.ny = int64_t(std::floor((hi[1] - lo[1]) / cell) + 1);
+  grid.nz = int64_t(std::floor((hi[2] - lo[2]) / cell) + 1);
   grid.minX = lo[0], grid.minY = lo[1], grid.minZ = lo[2], grid.inv = 1.0 / cell;
   const size_t cells = size_t(grid.nx * grid.ny * grid.nz);
 
+  // Counting sort into cells, in index order; a full cell turns later atoms away.
   std::vector<uint32_t> cellOf(n, UINT32_MAX);
   grid.cellStart.assign(cells + 1, 0);
+  size_t kept = 0, turnedAway = 0, firstTurnedAway = 0;
   for (size_t i = 0; i < n; ++i) {
     if (radius[i] < 0.f) continue;
     const int64_t c = grid.Coord(mol.x[i], grid.minX, grid.nx) +
                       grid.nx * (grid.Coord(mol.y[i], grid.minY, grid.ny) +
                                  grid.ny * grid.Coord(mol.z[i], grid.minZ, grid.nz));
+    if (grid.cellStart[size_t(c) + 1] == kMaxCellAtoms) {
+      if (turnedAway++ == 0) firstTurnedAway = i;
+      continue;
+    }
     cellOf[i] = uint32_t(c);
     ++grid.cellStart[size_t(c) + 1];
+    ++kept;
+  }
+  if (turnedAway > 0) {
+    char edge[32];
+    std::snprintf(edge, sizeof edge, "%.2f", cell);
+    WarnCapped(mol, firstTurnedAway,
+               "is one of more than " + std::to_string(kMaxCellAtoms) + " atoms in one " + edge +
+                   " Å grid cell (atoms on top of each other?): " + std::to_string(turnedAway) +
+                   " atom(s) get no distance bonds");
   }
   for (size_t c = 0; c < cells; ++c) grid.cellStart[c + 1] += grid.cellStart[c];
 
@@ -107,7 +171,7 @@ size_t ComputeDistanceBonds(Molecule& mol, const BondOptions& options) {
     uint16_t model;
     uint8_t flags;
   };
-  std::vector<Packed> packed(included);
+  std::vector<Packed> packed(kept);
   {
     std::vector<uint32_t> fill(grid.cellStart.begin(), grid.cellStart.end() - 1);
     for (size_t i = 0; i < n; ++i)
@@ -126,7 +190,7 @@ size_t ComputeDistanceBonds(Molecule& mol, const BondOptions& options) {
       out.reserve(kChunk + kChunk / 4);  // ~1.05 bonds per atom in proteins: one allocation
       const size_t end = std::min(n, (chunk + 1) * kChunk);
       for (size_t i = chunk * kChunk; i < end; ++i) {
-        if (radius[i] < 0.f) continue;
+        if (cellOf[i] == UINT32_MAX) continue;
         const double xi = mol.x[i], yi = mol.y[i], zi = mol.z[i];
         const double ri = double(radius[i]);
         const int64_t cx = grid.Coord(xi, grid.minX, grid.nx);
@@ -155,10 +219,32 @@ size_t ComputeDistanceBonds(Molecule& mol, const BondOptions& options) {
             }
           }
         std::sort(partners.begin(), partners.end());
+        if (partners.size() > kMaxBonds) partners.resize(kMaxBonds);  // the degree cap below keeps <= kMaxBonds anyway
         for (const uint32_t j : partners) out.emplace_back(uint32_t(i), j);
       }
     }
   });
+
+  // At most kMaxBonds distance bonds per atom, counting both ends, in (i, j) order: sequential,
+  // so the same pairs survive for any thread count.
+  std::vector<uint16_t> degree(n, 0);
+  size_t capped = 0, firstCapped = 0;
+  for (auto& f : found) {
+    size_t keep = 0;
+    for (const auto& [i, j] : f) {
+      if (degree[i] >= kMaxBonds || degree[j] >= kMaxBonds) {
+        if (capped++ == 0) firstCapped = degree[i] >= kMaxBonds ? i : j;
+        continue;
+      }
+      ++degree[i], ++degree[j];
+      f[keep++] = {i, j};
+    }
+    f.resize(keep);
+  }
+  if (capped > 0)
+    WarnCapped(mol, firstCapped,
+               "has more than " + std::to_string(kMaxBonds) + " atoms within bonding distance: " +
+                   std::to_string(capped) + " distance bond(s) left out");
 
   // Merge the sorted record bonds already present with the sorted new pairs.
   size_t total = 0;

@@ -10,6 +10,7 @@
 // follow from the file size; a remainder means the last frame is truncated.
 #include <bit>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <vector>
 
@@ -116,6 +117,7 @@ class DcdReader final : public TrajectoryReader {
     int32_t icntrl[20];
     for (int i = 0; i < 20; ++i) icntrl[i] = Int(h + 4 + 4 * i);
     const bool charmm = icntrl[19] != 0;
+    nset_ = icntrl[0];  // the header's frame count: informative only, the file size decides
     istart_ = icntrl[1];
     nsavc_ = icntrl[2] > 0 ? icntrl[2] : 1;
     const int32_t namnf = icntrl[8];
@@ -182,6 +184,11 @@ class DcdReader final : public TrajectoryReader {
                                                       " of its " + std::to_string(frameBytes_) +
                                                       " bytes are present");
     }
+    if (nset_ < 0)
+      std::fprintf(stderr,
+                   "softmol: warning: %s: header: the frame count (NSET) is %d; reading the %zu "
+                   "frame(s) the file holds\n",
+                   file_.path().c_str(), nset_, info_.frameCount);
     if (!free_.empty() && info_.frameCount > 0) {
       // Keep the first frame: the fixed atoms' positions for every later frame.
       TrajectoryFrame f0;
@@ -224,6 +231,7 @@ class DcdReader final : public TrajectoryReader {
   bool hasCell_ = false;
   bool has4d_ = false;
   int64_t istart_ = 0;
+  int32_t nset_ = 0;  // NSET as the header says (warned about when negative)
   int64_t nsavc_ = 1;
   double deltaPs_ = 0;
   uint64_t headerEnd_ = 0, firstBytes_ = 0, frameBytes_ = 0;

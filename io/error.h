@@ -1,5 +1,7 @@
-// io/error.h — the exception for bad input (files, records, options). Readers throw it with
-// the exact place; cli/main.cpp catches it once, prints one line and exits non-zero.
+// io/error.h — softmol's errors and exit codes. InputError is bad input (a file, record,
+// option or scene key): readers throw it with the exact place. InternalError is a failure that
+// is not the input's fault (a dependency or driver that fails, a bug). cli/main.cpp is the one
+// boundary: it catches everything, prints one line and exits with one of the codes below.
 // Kernels and passes never throw; broken invariants are SOFTMOL_CHECK (common/check.h).
 #pragma once
 
@@ -25,6 +27,14 @@ struct SourceLocation {
   std::string ToString() const;  // "1abc.pdb:1204:31", "md.xtc: frame 17", "--size"
 };
 
+// Exit codes of the softmol command (listed in `softmol --help`).
+enum ExitCode : int {
+  kExitOk = 0,
+  kExitBadInput = 2,     // InputError, or a command line CLI11 rejects
+  kExitInternal = 3,     // InternalError, or any other exception from a dependency
+  kExitOutOfMemory = 4,  // std::bad_alloc
+};
+
 class InputError : public std::runtime_error {
  public:
   // what() is "<where>: <message>", e.g. "1abc.pdb:1204:31: x coordinate is not a number: 'l2.500'"
@@ -35,6 +45,14 @@ class InputError : public std::runtime_error {
  private:
   SourceLocation where_;
   std::string message_;
+};
+
+// Not the input's fault: a dependency or driver that fails, or a broken assumption. what() is
+// "internal error: <message>".
+class InternalError : public std::runtime_error {
+ public:
+  explicit InternalError(std::string_view message)
+      : std::runtime_error("internal error: " + std::string(message)) {}
 };
 
 }  // namespace softmol::io

@@ -37,6 +37,12 @@ struct Chain {
   uint32_t modelIndex = 0;
 };
 
+// The coordinate range softmol accepts, in Å. A coordinate beyond ±1e6 Å is a placeholder
+// or a corrupt file (the largest assemblies span ~1e4 Å; floats relative to the camera keep
+// 0.06 Å there): readers refuse it as bad input, naming the file and the line (PDB) or the atom
+// (mmCIF, assemblies, trajectory frames), instead of rendering an empty image.
+constexpr double kMaxCoordinate = 1e6;
+
 enum class BondSource : uint8_t { kRecord = 0, kDistance = 1 };
 
 struct Molecule {

@@ -33,35 +33,54 @@ SourceLocation LocationOfByte(const std::string& name, const std::string& text, 
   return {name, line, column};
 }
 
-// Duplicate keys are silently merged by most JSON readers; in a scene they are a typo.
+// Duplicate keys are silently merged by most JSON readers; in a scene they are a typo. Also
+// remembers the last top-level key, so an error inside its value (a number that overflows a
+// double) can name it. The state lives outside the callback: nlohmann copies the callback.
+struct KeyState {
+  std::set<std::string> keys;
+  std::string last;
+};
+
 class DuplicateKeyCheck {
  public:
-  explicit DuplicateKeyCheck(const std::string& name) : name_(name) {}
+  DuplicateKeyCheck(const std::string& name, KeyState& state) : name_(name), state_(&state) {}
   bool operator()(int depth, Json::parse_event_t event, Json& parsed) {
     if (event == Json::parse_event_t::key && depth == 1) {
       const std::string key = parsed.get<std::string>();
-      if (!keys_.insert(key).second) throw InputError({name_}, "key '" + key + "' appears twice");
+      if (!state_->keys.insert(key).second) throw InputError({name_}, "key '" + key + "' appears twice");
+      state_->last = key;
     }
     return true;
   }
 
  private:
   std::string name_;
-  std::set<std::string> keys_;
+  KeyState* state_;
 };
+
+// "[json.exception.parse_error.101] parse error at line 3, column 5: syntax error ..." → the
+// text after the first ": " (nlohmann's own place is replaced by ours).
+std::string MessageOf(const Json::exception& e) {
+  const std::string what = e.what();
+  const size_t colon = what.find(": ");
+  if (colon != std::string::npos) return what.substr(colon + 2);
+  const size_t bracket = what.find("] ");
+  return bracket == std::string::npos ? what : what.substr(bracket + 2);
+}
 
 }  // namespace
 
 std::vector<SceneSetting> ParseSceneFile(const std::string& text, const std::string& name) {
   Json doc;
+  KeyState state;
   try {
-    doc = Json::parse(text, DuplicateKeyCheck(name));
+    doc = Json::parse(text, DuplicateKeyCheck(name, state));
   } catch (const Json::parse_error& e) {
-    std::string what = e.what();
-    // "[json.exception.parse_error.101] parse error at line 3, column 5: syntax error ..."
-    const size_t colon = what.find(": ");
-    throw InputError(LocationOfByte(name, text, e.byte == 0 ? 0 : e.byte - 1),
-                     colon == std::string::npos ? what : what.substr(colon + 2));
+    throw InputError(LocationOfByte(name, text, e.byte == 0 ? 0 : e.byte - 1), MessageOf(e));
+  } catch (const Json::exception& e) {
+    // Not a syntax error: a value nlohmann cannot hold (out_of_range: 1e400 overflows a double).
+    const std::string key = state.last.empty() ? "" : "key '" + state.last + "': ";
+    throw InputError({name}, key + MessageOf(e));
   }
   if (!doc.is_object())
     throw InputError({name}, "a scene file is one JSON object ({\"style\": \"balls\", ...})");
@@ -79,13 +98,21 @@ std::vector<SceneSetting> ParseSceneFile(const std::string& text, const std::str
       for (const Json& e : value) {
         if (!(e.is_string() || e.is_number()))
           throw InputError({name}, where + "list elements must be strings or numbers");
-        s.values.push_back(ScalarText(e));
+        try {
+          s.values.push_back(ScalarText(e));
+        } catch (const Json::exception& ex) {
+          throw InputError({name}, where + MessageOf(ex));
+        }
       }
     } else {
       s.kind = value.is_string()    ? SceneSetting::Kind::kString
                : value.is_boolean() ? SceneSetting::Kind::kBoolean
                                     : SceneSetting::Kind::kNumber;
-      s.values.push_back(ScalarText(value));
+      try {
+        s.values.push_back(ScalarText(value));
+      } catch (const Json::exception& e) {
+        throw InputError({name}, where + MessageOf(e));
+      }
     }
     settings.push_back(std::move(s));
   }

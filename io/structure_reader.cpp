@@ -50,6 +50,12 @@ bool IsGzip(std::string_view bytes) {
 // Inflates every gzip member of `bytes`. A stream that ends before its trailer is an error:
 // that is what a truncated download looks like.
 constexpr size_t kMaxInflated = size_t(4) << 30;  // a PDB/mmCIF text beyond this is not real
+// A gzip bomb is refused as it inflates, not after: PDB and mmCIF text deflates 3-10× (even a
+// file of near-identical records stays far below 100×), gzip itself tops out at 1032×. Past
+// kBombCheckFrom bytes of output, more than kMaxRatio output bytes per input byte consumed so
+// far is a bomb: refused with at most ~kBombCheckFrom bytes held (5.8 MB → 6 GB: 16 MiB, 0.1 s).
+constexpr size_t kMaxRatio = 256;
+constexpr size_t kBombCheckFrom = size_t(16) << 20;
 
 std::string Gunzip(std::string_view bytes, const std::string& name) {
   std::string out;
@@ -69,6 +75,14 @@ std::string Gunzip(std::string_view bytes, const std::string& name) {
     if (out.size() > kMaxInflated) {
       inflateEnd(&zs);
       throw InputError(SourceLocation(name), "gzip data inflates to more than 4 GiB");
+    }
+    const size_t consumed = size_t(zs.next_in - reinterpret_cast<const Bytef*>(bytes.data()));
+    if (out.size() > kBombCheckFrom && out.size() > kMaxRatio * std::max<size_t>(consumed, 1)) {
+      inflateEnd(&zs);
+      throw InputError(SourceLocation(name),
+                       "gzip data inflates more than " + std::to_string(kMaxRatio) + "× (" +
+                           std::to_string(consumed) + " bytes to " + std::to_string(out.size()) +
+                           " so far): not a molecule file (a gzip bomb?)");
     }
     if (rc == Z_STREAM_END) {
       if (zs.avail_in == 0) break;
@@ -188,6 +202,7 @@ InputError FromGemmiPdb(const std::string& name, const std::string& message) {
 
 struct PdbScan {
   std::vector<std::pair<uint32_t, uint32_t>> conect;  // serial pairs
+  std::vector<long> conectLine;                       // the line of each pair
 };
 
 bool RecordIs(std::string_view line, const char* record4) {
@@ -216,6 +231,9 @@ void ParseCoordinate(std::string_view line, size_t begin, const char* axis,
   if (!std::isfinite(value))
     throw InputError(SourceLocation(name, lineNumber, column),
                      std::string(axis) + " coordinate is not finite: '" + text + "'");
+  if (std::fabs(value) > kMaxCoordinate)
+    throw InputError(SourceLocation(name, lineNumber, column),
+                     std::string(axis) + " coordinate " + text + " is beyond ±1e6 Å");
 }
 
 PdbScan ScanPdb(std::string_view text, const std::string& name) {
@@ -258,8 +276,10 @@ PdbScan ScanPdb(std::string_view text, const std::string& name) {
                            "CONECT atom serial is not a positive number: '" + value + "'");
         if (field == 0)
           from = static_cast<uint32_t>(serial);
-        else if (from != 0)
+        else if (from != 0) {
           scan.conect.emplace_back(from, static_cast<uint32_t>(serial));
+          scan.conectLine.push_back(lineNumber);
+        }
       }
     } else if (line.size() >= 3 && std::toupper(static_cast<unsigned char>(line[0])) == 'E' &&
                std::toupper(static_cast<unsigned char>(line[1])) == 'N' &&
@@ -419,11 +439,21 @@ std::string Describe(const Molecule& mol, size_t atom) {
          mol.chains[r.chainIndex].name + ")";
 }
 
-void CheckFinite(const Molecule& mol, const std::string& name) {
-  for (size_t i = 0; i < mol.atomCount(); ++i)
+// Finite and within ±kMaxCoordinate (io/molecule.h): a 1e30 placeholder would otherwise give
+// an empty image and grids sized by it.
+void CheckCoordinates(const Molecule& mol, const std::string& name, const char* what = "") {
+  for (size_t i = 0; i < mol.atomCount(); ++i) {
     if (!std::isfinite(mol.x[i]) || !std::isfinite(mol.y[i]) || !std::isfinite(mol.z[i]))
       throw InputError(SourceLocation(name, 0, 0, Describe(mol, i)),
                        "coordinate is not a finite number (not a number, NaN or Inf)");
+    const double m = std::max({std::fabs(mol.x[i]), std::fabs(mol.y[i]), std::fabs(mol.z[i])});
+    if (m > kMaxCoordinate) {
+      char xyz[128];
+      std::snprintf(xyz, sizeof xyz, "(%g, %g, %g)", mol.x[i], mol.y[i], mol.z[i]);
+      throw InputError(SourceLocation(name, 0, 0, Describe(mol, i)),
+                       std::string("coordinate ") + xyz + what + " is beyond ±1e6 Å");
+    }
+  }
 }
 
 void SetBonds(Molecule& mol, std::vector<std::pair<uint32_t, uint32_t>> pairs) {
@@ -447,6 +477,8 @@ void SetBonds(Molecule& mol, std::vector<std::pair<uint32_t, uint32_t>> pairs) {
 // drawn as bonds. Both apply inside every model that was read.
 void AddRecordBonds(const gemmi::Structure& st, const PdbScan& scan, Molecule& mol) {
   std::vector<std::pair<uint32_t, uint32_t>> pairs;
+  size_t skipped = 0;  // CONECT pairs of the first model naming an atom that was not read
+  size_t firstSkipped = 0;
   if (!scan.conect.empty()) {
     std::unordered_map<uint64_t, uint32_t> bySerial;  // (model << 32 | serial) -> atom
     bySerial.reserve(mol.atomCount());
@@ -454,12 +486,26 @@ void AddRecordBonds(const gemmi::Structure& st, const PdbScan& scan, Molecule& m
       bySerial.emplace(uint64_t(mol.modelIndex[i]) << 32 | mol.serial[i], uint32_t(i));
     const uint32_t models = mol.atomCount() ? mol.modelIndex.back() + 1u : 0u;
     for (uint32_t m = 0; m < models; ++m)
-      for (const auto& [sa, sb] : scan.conect) {
+      for (size_t k = 0; k < scan.conect.size(); ++k) {
+        const auto [sa, sb] = scan.conect[k];
         const auto a = bySerial.find(uint64_t(m) << 32 | sa);
         const auto b = bySerial.find(uint64_t(m) << 32 | sb);
-        // CONECT may name atoms of a dropped alternate location, or a broken serial: skip.
-        if (a != bySerial.end() && b != bySerial.end()) pairs.emplace_back(a->second, b->second);
+        // CONECT may name atoms of a dropped alternate location, or a broken serial: skip,
+        // and say so once (below).
+        if (a != bySerial.end() && b != bySerial.end()) {
+          pairs.emplace_back(a->second, b->second);
+        } else if (m == 0 && skipped++ == 0) {
+          firstSkipped = k;
+        }
       }
+    if (skipped > 0) {
+      const auto [sa, sb] = scan.conect[firstSkipped];
+      const uint32_t missing = bySerial.count(sa) ? sb : sa;  // model 0: key = serial
+      std::fprintf(stderr,
+                   "softmol: warning: %s:%ld: CONECT names atom serial %u, which was not read (no such "
+                   "atom, or an alternate location that was dropped); %zu CONECT bond(s) skipped\n",
+                   mol.sourcePath.c_str(), scan.conectLine[firstSkipped], missing, skipped);
+    }
   }
   bool anyConnection = false;
   for (const gemmi::Connection& c : st.connections)
@@ -676,7 +722,7 @@ Molecule ReadMoleculeFromMemory(std::string_view bytes, const std::string& name,
                              "rows)");
   if (mol.atomCount() >= UINT32_MAX / 2)
     throw InputError(SourceLocation(name), "too many atoms (" + std::to_string(mol.atomCount()) + ")");
-  CheckFinite(mol, name);
+  CheckCoordinates(mol, name);
   if (unknown.count > 0)
     std::fprintf(stderr,
                  "softmol: warning: %s: %zu atom(s) of unknown element (first: '%s' in '%s'); "
@@ -695,6 +741,7 @@ Molecule ReadMoleculeFromMemory(std::string_view bytes, const std::string& name,
                                         ? std::string("the file defines no assemblies")
                                         : "available: " + ListIds(mol.assemblyIds)));
     mol = BuildAssembly(mol, state, *found, name);
+    CheckCoordinates(mol, name, (" after the operators of assembly " + options.assembly).c_str());
   }
   FillElementColumns(mol);
   return mol;

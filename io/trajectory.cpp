@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <cmath>
+#include <memory>
 #include <cstring>
 #include <filesystem>
 #include <system_error>
@@ -40,9 +42,40 @@ void CheckRegularNonEmpty(const std::string& path) {
     throw InputError(detail::FileLoc(path), "trajectory file is empty");
 }
 
+// Every frame's coordinates within ±kMaxCoordinate (io/molecule.h), whatever the format: the
+// readers already refuse non-finite values; this refuses the far ones, naming the frame and atom.
+class RangeCheckedReader final : public TrajectoryReader {
+ public:
+  RangeCheckedReader(std::unique_ptr<TrajectoryReader> inner, std::string path)
+      : inner_(std::move(inner)), path_(std::move(path)) {}
+  const TrajectoryInfo& Info() const override { return inner_->Info(); }
+  void Seek(size_t frameIndex) override { inner_->Seek(frameIndex); }
+  bool Next(TrajectoryFrame& frame) override {
+    if (!inner_->Next(frame)) return false;
+    const float limit = float(kMaxCoordinate);
+    for (size_t a = 0; a < frame.x.size(); ++a)
+      if (!(std::fabs(frame.x[a]) <= limit && std::fabs(frame.y[a]) <= limit && std::fabs(frame.z[a]) <= limit))
+        throw InputError(detail::FileLoc(path_, detail::FrameDetail(frame.index)),
+                         "atom " + std::to_string(a + 1) + " has a coordinate beyond ±1e6 Å");
+    return true;
+  }
+
+ private:
+  std::unique_ptr<TrajectoryReader> inner_;
+  std::string path_;
+};
+
+std::unique_ptr<TrajectoryReader> OpenFormat(const std::string& path, size_t topologyAtomCount);
+
 }  // namespace
 
 std::unique_ptr<TrajectoryReader> OpenTrajectory(const std::string& path, size_t topologyAtomCount) {
+  return std::make_unique<RangeCheckedReader>(OpenFormat(path, topologyAtomCount), path);
+}
+
+namespace {
+
+std::unique_ptr<TrajectoryReader> OpenFormat(const std::string& path, size_t topologyAtomCount) {
   CheckRegularNonEmpty(path);
   std::string name = Lower(std::filesystem::path(path).filename().string());
   bool gz = EndsWith(name, ".gz");
@@ -60,6 +93,8 @@ std::unique_ptr<TrajectoryReader> OpenTrajectory(const std::string& path, size_t
   throw InputError(detail::FileLoc(path),
                    "unknown trajectory format (expected .xtc, .dcd, .pdb, .ent, .cif, .mmcif, optionally .gz)");
 }
+
+}  // namespace
 
 void ApplyFrame(const TrajectoryFrame& frame, Molecule& molecule) {
   SOFTMOL_CHECK(frame.x.size() == molecule.atomCount() && frame.y.size() == frame.x.size() &&

@@ -6,7 +6,12 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 secs=${1:-60}
-scripts/build.sh fuzz
+scripts/setup.sh
+# Only the fuzz targets (not the whole preset's tests and benchmarks: CI time, docs/PERFORMANCE.md).
+targets=()
+for src in tests/fuzz/fuzz_*.cpp; do targets+=("$(basename "$src" .cpp)"); done
+if [ -f build/fuzz/CMakeCache.txt ]; then cmake --preset fuzz >/dev/null; else cmake --preset fuzz -G Ninja >/dev/null; fi
+cmake --build --preset fuzz -j "$(nproc 2>/dev/null || echo 2)" --target "${targets[@]}"
 for src in tests/fuzz/fuzz_*.cpp; do
   name=$(basename "$src" .cpp)
   mkdir -p "build/fuzz/corpus/$name"

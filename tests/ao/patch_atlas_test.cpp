@@ -341,5 +341,20 @@ TEST(AoPatchAtlas, BilinearLookupIsSeamlessOnCylinders) {
   }
 }
 
+// --ao baked with no size given: the default 1024² while patches stay >= 4 texels, else the
+// smallest power of two that gives them 4 (the 1.03 M-atom 3J6R assembly: 8192², 6 texels),
+// up to 16384²; beyond that the largest side with any patch that fits.
+TEST(AoPatchAtlas, ChooseAtlasFitsTheStructure) {
+  const AtlasOptions base;
+  EXPECT_EQ(ChooseAtlas(5684, 5800, base).textureSide, 1024);  // 1tii: the default
+  const AtlasOptions big = ChooseAtlas(1032840, 1069680, base);
+  EXPECT_EQ(big.textureSide, 8192);
+  EXPECT_EQ(MakeAtlasLayout(1032840, 1069680, big).patchSize, 6);
+  const AtlasOptions huge = ChooseAtlas(10328400, 10696800, base);  // 10 M atoms: 16384², 4 texels
+  EXPECT_EQ(huge.textureSide, 16384);
+  EXPECT_GE(MakeAtlasLayout(10328400, 10696800, huge).patchSize, 2);
+  EXPECT_THROW(ChooseAtlas(size_t(1) << 30, 0, base), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace softmol::ao

@@ -10,6 +10,8 @@
 // 1 PHE, 2 TYR = 8; 3 disulfides (struct_conn) → 327 − 1 + 8 + 3 = 337.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <set>
 #include <string>
@@ -155,13 +157,76 @@ TEST(DistanceBonds, EmptyAndSingleAtom) {
 }
 
 TEST(DistanceBonds, FarOutlierKeepsGridSmall) {
-  // Two bonded atoms and one 1e7 Å away: the grid must coarsen, not allocate 1e21 cells.
+  // Two bonded atoms and one 1e6 Å away (the edge of the accepted range): the grid must not
+  // allocate 1e18 cells.
   const std::string pdb =
       "ATOM      1  CA  ALA A   1       0.000   0.000   0.000  1.00  0.00           C\n"
       "ATOM      2  CB  ALA A   1       1.500   0.000   0.000  1.00  0.00           C\n"
-      "ATOM      3  CA  ALA A   2   9999999.09999999.09999999.0  1.00  0.00           C\n";
+      "ATOM      3  CA  ALA A   2    999999.0999999.0999999.0  1.00  0.00           C\n";
   Molecule m = ReadMoleculeFromMemory(pdb, "far.pdb");
   EXPECT_EQ(ComputeDistanceBonds(m), 1u);
+}
+
+// Bounded work for broken models: atoms on top of each other, or packed far denser than matter.
+Molecule Carbons(const std::vector<std::array<double, 3>>& at) {
+  Molecule m;
+  m.sourcePath = "dense.pdb";
+  m.residues.push_back(Residue{});
+  m.chains.push_back(Chain{"A", 0});
+  for (const auto& p : at) {
+    m.x.push_back(p[0]), m.y.push_back(p[1]), m.z.push_back(p[2]);
+    m.element.push_back(6), m.flags.push_back(0), m.residueIndex.push_back(0);
+    m.modelIndex.push_back(0), m.serial.push_back(uint32_t(m.serial.size() + 1));
+    m.atomName.push_back({'C', 0, 0, 0});
+  }
+  return m;
+}
+
+TEST(DistanceBonds, AtomsAtOnePositionCostLinearTimeAndGetNoBonds) {
+  Molecule m = Carbons(std::vector<std::array<double, 3>>(50000, {1.0, 2.0, 3.0}));
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(ComputeDistanceBonds(m), 0u);  // closer than 0.4 Å: duplicates, never bonded
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("softmol: warning: dense.pdb: atom 257 (serial 257, C)"), std::string::npos) << err;
+}
+
+TEST(DistanceBonds, DegreeIsCappedTheSameWayForAnyThreadCount) {
+  std::vector<std::array<double, 3>> at;  // a 0.5 Å lattice: ~130 carbons within 1.97 Å of each
+  for (int i = 0; i < 24; ++i)
+    for (int j = 0; j < 24; ++j)
+      for (int k = 0; k < 24; ++k) at.push_back({0.5 * i, 0.5 * j, 0.5 * k});
+  Molecule one = Carbons(at), two = Carbons(at);
+  testing::internal::CaptureStderr();
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    ComputeDistanceBonds(one);
+  }
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+    ComputeDistanceBonds(two);
+  }
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("atoms within bonding distance"), std::string::npos) << err;
+  EXPECT_EQ(one.bondA, two.bondA);
+  EXPECT_EQ(one.bondB, two.bondB);
+  std::vector<int> degree(at.size(), 0);
+  for (size_t b = 0; b < one.bondCount(); ++b) ++degree[one.bondA[b]], ++degree[one.bondB[b]];
+  EXPECT_LE(*std::max_element(degree.begin(), degree.end()), 16);
+  EXPECT_GT(one.bondCount(), at.size());  // capped, not dropped
+}
+
+// Far outliers are clamped into the border cells of a grid sized from the robust box: the bonds
+// of the bulk are all still found (the brute-force count of a chain of 3000 atoms 1.5 Å apart).
+TEST(DistanceBonds, FarOutliersDoNotCoarsenTheGrid) {
+  std::vector<std::array<double, 3>> at;
+  for (int i = 0; i < 3000; ++i) at.push_back({1.5 * (i % 30), 1.5 * ((i / 30) % 10), 1.5 * (i / 300)});
+  at.push_back({999999.0, 0, 0});
+  at.push_back({999999.0, 1.5, 0});  // a bonded pair far away
+  at.push_back({-999999.0, -999999.0, 999999.0});
+  Molecule m = Carbons(at);
+  const size_t found = ComputeDistanceBonds(m);
+  // Lattice 30 × 10 × 10 at 1.5 Å: bonds along each axis only (diagonals are 2.12 Å > 1.97 Å).
+  EXPECT_EQ(found, size_t(29 * 10 * 10 + 30 * 9 * 10 + 30 * 10 * 9) + 1);
 }
 
 }  // namespace

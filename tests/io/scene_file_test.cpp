@@ -58,5 +58,16 @@ TEST(SceneFile, MissingFileIsAnInputError) {
   EXPECT_THROW(ReadSceneFile("/nonexistent/scene.json"), InputError);
 }
 
+// nlohmann throws out_of_range (not parse_error) for a number no double holds; it used to escape
+// the reader (std::terminate under the fuzzer, a raw "[json.exception...]" line in the CLI).
+TEST(SceneFileErrors, NumberOverflowNamesTheFileAndTheKey) {
+  for (const std::string text : {R"({"zoom": 1e400})", R"({"style": "balls", "size": -1e999})",
+                                 R"({"aov": [1, 1e400]})"}) {
+    const std::string e = ErrorOf(text);
+    EXPECT_EQ(e.rfind("scene.json: key '", 0), 0u) << text << " -> " << e;
+    EXPECT_EQ(e.find("json.exception"), std::string::npos) << e;
+  }
+}
+
 }  // namespace
 }  // namespace softmol::io
