@@ -209,6 +209,12 @@ double MeanAbsError(const Frame& f, const BakeOptions& o) {
 }
 
 TEST(AoShadowBake, CloseToGroundTruthAndConverges) {
+#if defined(__SANITIZE_ADDRESS__)
+  // An accuracy measurement (five bakes against a ray-traced ground truth): the release suite
+  // runs it; under ASan it took 442 s of CI for no memory-safety coverage the other bake
+  // tests do not give.
+  GTEST_SKIP() << "accuracy test: run in the release suite";
+#endif
   for (const char* file : {"pept.pdb", "il2.pdb"}) {
     SCOPED_TRACE(file);
     const Frame f = MakeFrame(file);
