@@ -4,6 +4,7 @@
 // message, named by the flag or by the file and key.
 #include <filesystem>
 #include <cstdlib>
+#include <unistd.h>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -16,7 +17,15 @@
 namespace softmol::cli {
 namespace {
 
-const std::filesystem::path kDir = std::filesystem::temp_directory_path() / "softmol_cli_params_test";
+// One folder per process: ctest runs each test of this file as its own process, in parallel.
+const std::filesystem::path kDir =
+    std::filesystem::temp_directory_path() / ("softmol_cli_params_test_" + std::to_string(::getpid()));
+struct RemoveDirAtExit {
+  ~RemoveDirAtExit() {
+    std::error_code ignored;
+    std::filesystem::remove_all(kDir, ignored);
+  }
+} removeDirAtExit;
 
 // A value each option accepts that differs from its default (derived from the declared shape;
 // free text needs an example).
