@@ -75,8 +75,8 @@ class CommandParams {
   ParamInputs& inputs() { return inputs_; }
   const io::ParamTable<Target>& table() const { return table_; }
 
-  // Every given value, in table order (flags first when both are somehow given); throws
-  // io::InputError at the value's origin.
+  // Every given value, in table order (a scene key the command line also gave was dropped:
+  // the flag wins); throws io::InputError at the value's origin.
   void Apply(Target& target) const {
     for (const GivenValue& v : inputs_.given()) table_[v.param].set(target, v.text, v.where);
   }

@@ -12,6 +12,7 @@
 #include "cli/bake_options.h"
 #include "cli/command_params.h"
 #include "effects/frame_renderer.h"
+#include "raster/representation.h"
 
 namespace softmol::cli {
 
@@ -33,7 +34,7 @@ struct RenderArgs {
   std::string scene;        // --scene scene.json; flags override it
   std::string output = "softmol.png";
   std::string size = "1024x768";
-  std::string style = "spacefill";
+  raster::Style style = raster::Style::kSpacefill;
   std::string assembly;
   std::string camera;       // EX,EY,EZ,TX,TY,TZ,UX,UY,UZ
   std::string rotate;       // X,Y,Z degrees

@@ -36,7 +36,6 @@
 namespace softmol::cli {
 namespace {
 
-
 enum class OutputKind { kPng, kExr };
 
 OutputKind OutputKindOf(const std::string& path, const io::SourceLocation& where = {"-o"}) {
@@ -53,12 +52,15 @@ std::string SiblingAovPath(const std::string& png) {
   return (p.parent_path() / (p.stem().string() + ".aov.exr")).string();
 }
 
-raster::Style ParseStyle(const std::string& s) {
-  if (s == "spacefill") return raster::Style::kSpacefill;
-  if (s == "balls") return raster::Style::kBalls;
-  if (s == "licorice") return raster::Style::kLicorice;
-  if (s == "ellipsoids") return raster::Style::kEllipsoids;
-  throw io::InputError({"--style"}, "unknown style '" + s + "' (spacefill, balls, licorice, ellipsoids)");
+const std::vector<std::pair<std::string, raster::Style>> kStyles = {{"spacefill", raster::Style::kSpacefill},
+                                                                    {"balls", raster::Style::kBalls},
+                                                                    {"licorice", raster::Style::kLicorice},
+                                                                    {"ellipsoids", raster::Style::kEllipsoids}};
+
+std::string StyleName(raster::Style style) {
+  for (const auto& [name, s] : kStyles)
+    if (s == style) return name;
+  return "?";
 }
 
 // The options `softmol render` itself reads (files, framing, the job).
@@ -79,12 +81,8 @@ io::ParamTable<RenderArgs> JobParams() {
                             [](std::string_view text, const io::SourceLocation& where) {
                               (void)ParseSize(std::string(text), where.ToString());
                             }),
-      ChoiceParam<RenderArgs>("style", [](auto& a) -> auto& { return a.style; },
-                              std::vector<std::pair<std::string, std::string>>{{"spacefill", "spacefill"},
-                                                                               {"balls", "balls"},
-                                                                               {"licorice", "licorice"},
-                                                                               {"ellipsoids", "ellipsoids"}},
-                              "Representation", "molecule"),
+      ChoiceParam<RenderArgs>("style", [](auto& a) -> auto& { return a.style; }, kStyles, "Representation",
+                              "molecule"),
       TextParam<RenderArgs>("assembly", [](auto& a) -> auto& { return a.assembly; }, "ID", "Build biological assembly ID",
                             "molecule"),
       TextParam<RenderArgs>("trajectory", [](auto& a) -> auto& { return a.trajectory; }, "FILE",
@@ -214,7 +212,7 @@ int RunRender(const RenderArgs& a) {
     throw io::InputError({"MOLECULE"}, "no molecule: give a file, or \"molecule\" in the --scene file");
   const OutputKind kind = OutputKindOf(a.output);
   const ImageSize size = ParseSize(a.size, "--size");
-  const raster::Style style = ParseStyle(a.style);
+  const raster::Style style = a.style;
   effects::RenderOptions ro = FrameOptionsOf(a);
   const uint32_t aovs = ro.aovs;
 #if !SOFTMOL_HAVE_GL
@@ -275,12 +273,12 @@ int RunRender(const RenderArgs& a) {
   const double repMs = MsSince(t0);
   trace.AddComplete("representation", "load", t, repMs);
   if (scene.size() == 0)
-    throw io::InputError({a.molecule}, "nothing to draw in style '" + a.style + "'");
+    throw io::InputError({a.molecule}, "nothing to draw in style '" + StyleName(style) + "'");
   if (ro.ao == effects::AoMode::kBaked) ro.bake = MakeBakeOptions(a.bake, scene);
   if (highlight) {
     // Halos need the selection's spheres: the per-atom styles draw sphere i for atom i.
     if (scene.spheres.size() != loaded.molecule.atomCount())
-      throw io::InputError({"--highlight"}, "halos need one sphere per atom (styles spacefill, balls, licorice), not '" + a.style + "'");
+      throw io::InputError({"--highlight"}, "halos need one sphere per atom (styles spacefill, balls, licorice), not '" + StyleName(style) + "'");
     ro.highlight.spheres = io::Evaluate(*highlight, loaded.molecule);
     if (std::none_of(ro.highlight.spheres.begin(), ro.highlight.spheres.end(), [](uint8_t b) { return b != 0; }))
       throw io::InputError({"--highlight"}, "selection '" + a.highlight + "' matches no atom");

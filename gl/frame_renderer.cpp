@@ -2,6 +2,7 @@
 // effects/frame_renderer.cpp and times them (each timed pass ends with glFinish).
 #include "gl/frame_renderer.h"
 
+#include <iterator>
 #include <stdexcept>
 #include <string>
 
@@ -100,14 +101,104 @@ GlFrameStats FrameRenderer::RenderGBuffer(const raster::PrimitiveScene& scene,
   return s;
 }
 
-bool Mirrors(effects::PassId pass) {
-  using effects::PassId;
-  return pass == PassId::kGBuffer || pass == PassId::kAoBake || pass == PassId::kBakedAoLookup ||
-         pass == PassId::kOccupancyPyramid || pass == PassId::kConeAo ||
-         pass == PassId::kShadowMap || pass == PassId::kShadows || pass == PassId::kOutlines ||
-         pass == PassId::kDepthHalos ||
-         pass == PassId::kShading || pass == PassId::kAovs;
+namespace {
+
+// What one GL pass runs on: the frame's inputs, the mirror's state, the frame's stats.
+struct GlPassContext {
+  FrameRenderer::Impl& m;
+  const raster::PrimitiveScene& scene;
+  const raster::Camera& cam;  // the samples' camera
+  const effects::RenderOptions& o;
+  const std::vector<effects::PlannedPass>& plan;
+  GlFrameStats& stats;
+  uint32_t& channels;  // the G-buffer's, once drawn
+};
+
+void GlGBuffer(GlPassContext& c) {
+  raster::FrameOptions fo;
+  fo.channels = c.channels = effects::GBufferChannels(c.plan);
+  fo.contourWidth = c.o.contourWidth;
+  fo.contourDepthAware = c.o.contourDepthAware;
+  fo.contourDepthScale = c.o.contourDepthScale;
+  fo.nearClip = c.o.nearClip;
+  c.stats = DrawGBuffer(c.m, c.scene, c.cam, fo);
 }
+
+// Baked on the CPU (the bake is not mirrored), once per structure and options as the CPU
+// backend keeps it, and uploaded when re-baked.
+void GlAoBake(GlPassContext& c) {
+  const uint64_t key = ao::BakeInputHash(c.scene, c.o.bake);
+  if (c.m.atlasBaked && c.m.atlasKey == key) return;
+  c.m.atlas = ao::BakeAo(c.scene, c.o.bake);
+  c.m.atlasKey = key;
+  c.m.atlasBaked = true;
+  c.m.bakedAo.Upload(c.m.atlas);
+}
+
+void GlBakedAoLookup(GlPassContext& c) { c.m.bakedAo.Run(c.m.gbuffer, c.m.ao); }
+
+// Built on the CPU (Hermosilla et al. rebuild it per frame on the GPU; here the mirror checks
+// the cone tracing against the same grid); re-uploaded only when it changed.
+void GlOccupancyPyramid(GlPassContext& c) {
+  const bool rebuilt = ao::UpdateOccupancyPyramid(c.scene, c.o.pyramid, c.m.pyramid);
+  if (rebuilt || c.m.coneAo.levelStart.size() != c.m.pyramid.levels.size()) c.m.coneAo.Upload(c.m.pyramid);
+}
+
+void GlConeAo(GlPassContext& c) { c.m.coneAo.Run(c.m.gbuffer, c.cam, c.m.pyramid, c.o.cone, c.m.ao); }
+
+void GlShadowMap(GlPassContext& c) {
+  c.m.shadows.RenderMap(c.m.tileKernel, c.scene, c.cam, c.o.shading.lightDirection, c.o.shadow);
+}
+
+void GlShadows(GlPassContext& c) { c.m.shadows.Run(c.m.gbuffer, c.cam, c.o.shadow, c.m.shadow); }
+
+void GlOutlines(GlPassContext& c) { c.m.outlines.Run(c.m.gbuffer, c.cam, c.o.outline, c.m.outline); }
+
+void GlDepthHalos(GlPassContext& c) {
+  raster::Camera view;
+  if (effects::DepthHaloCamera(c.scene, c.cam, c.o.nearClip, view))
+    c.m.depthHalos.Run(c.scene, view, c.m.gbuffer, c.o.depthHalo, c.m.depthHalo);
+  else
+    c.m.depthHalos.Skip(c.m.gbuffer, c.m.depthHalo);
+}
+
+// Lines, caps and the depth cue come from the G-buffer; AO, shadows, outlines and depth halos
+// from their passes' planes.
+void GlShading(GlPassContext& c) {
+  const effects::RenderOptions& o = c.o;
+  effects::ShadeInputs inputs = effects::MakeShadeInputs(o, c.scene, c.cam);
+  if (o.outlines) inputs.outline = c.m.outline;
+  if (o.shadows) inputs.shadow = c.m.shadow;
+  if (o.depthHalos) inputs.halo = c.m.depthHalo;
+  if (o.ao != effects::AoMode::kNone) inputs.ambientOcclusion = c.m.ao;
+  c.m.shading.Run(c.m.gbuffer, o.ssaa, o.shading, effects::Backdrop{o.background, o.transparent}, &inputs);
+}
+
+void GlAovs(GlPassContext&) {}  // taken from the read-back that ends every frame
+
+// The GL twin of each registered pass unit, by PassId (effects/pass_list.h); null: not mirrored.
+using GlPassFn = void (*)(GlPassContext&);
+constexpr GlPassFn kGlPasses[] = {
+    GlGBuffer,     // kGBuffer
+    GlAoBake,      // kAoBake
+    GlBakedAoLookup,  // kBakedAoLookup
+    GlOccupancyPyramid,  // kOccupancyPyramid
+    GlConeAo,      // kConeAo
+    nullptr,       // kReferenceAo
+    GlShadowMap,   // kShadowMap
+    GlShadows,     // kShadows
+    GlOutlines,    // kOutlines
+    GlDepthHalos,  // kDepthHalos
+    GlShading,     // kShading
+    nullptr,       // kHaloPyramid
+    nullptr,       // kObjectHalos
+    GlAovs,        // kAovs
+};
+static_assert(std::size(kGlPasses) == size_t(effects::PassId::kCount), "one entry per PassId");
+
+}  // namespace
+
+bool Mirrors(effects::PassId pass) { return pass < effects::PassId::kCount && kGlPasses[size_t(pass)] != nullptr; }
 
 GlFrameStats FrameRenderer::RenderFrame(const raster::PrimitiveScene& scene,
                                         const raster::Camera& camera,
@@ -125,71 +216,13 @@ GlFrameStats FrameRenderer::RenderFrame(const raster::PrimitiveScene& scene,
   f.height = camera.height;
   GlFrameStats s;
   uint32_t channels = 0;
+  GlPassContext context{*impl_, scene, cam, o, plan, s, channels};
   auto passStart = t0;
   for (const effects::PlannedPass& pass : plan) {
     SOFTMOL_CHECK(Mirrors(pass.id));
-    if (pass.id == effects::PassId::kGBuffer) {
-      raster::FrameOptions fo;
-      fo.channels = channels = effects::GBufferChannels(plan);
-      fo.contourWidth = o.contourWidth;
-      fo.contourDepthAware = o.contourDepthAware;
-      fo.contourDepthScale = o.contourDepthScale;
-      fo.nearClip = o.nearClip;
-      s = DrawGBuffer(*impl_, scene, cam, fo);
-    } else if (pass.id == effects::PassId::kAoBake) {
-      // Baked on the CPU, once per structure and options, as the CPU backend keeps it.
-      const uint64_t key = ao::BakeInputHash(scene, o.bake);
-      if (!impl_->atlasBaked || impl_->atlasKey != key) {
-        impl_->atlas = ao::BakeAo(scene, o.bake);
-        impl_->atlasKey = key;
-        impl_->atlasBaked = true;
-        impl_->bakedAo.Upload(impl_->atlas);
-        CheckGl("the atlas upload");
-      }
-    } else if (pass.id == effects::PassId::kBakedAoLookup) {
-      impl_->bakedAo.Run(impl_->gbuffer, impl_->ao);
-      CheckGl("the baked AO lookup");
-    } else if (pass.id == effects::PassId::kOccupancyPyramid) {
-      // The CPU builds it (Hermosilla et al. rebuild it per frame on the GPU; here the mirror
-      // checks the cone tracing against the same grid); re-uploaded only when it changed.
-      const bool rebuilt = ao::UpdateOccupancyPyramid(scene, o.pyramid, impl_->pyramid);
-      if (rebuilt || impl_->coneAo.levelStart.size() != impl_->pyramid.levels.size())
-        impl_->coneAo.Upload(impl_->pyramid);
-      CheckGl("the pyramid upload");
-    } else if (pass.id == effects::PassId::kConeAo) {
-      impl_->coneAo.Run(impl_->gbuffer, cam, impl_->pyramid, o.cone, impl_->ao);
-      CheckGl("the cone AO pass");
-    } else if (pass.id == effects::PassId::kShadowMap) {
-      impl_->shadows.RenderMap(impl_->tileKernel, scene, cam, o.shading.lightDirection, o.shadow);
-      glFinish();
-      CheckGl("the shadow map pass");
-    } else if (pass.id == effects::PassId::kShadows) {
-      impl_->shadows.Run(impl_->gbuffer, cam, o.shadow, impl_->shadow);
-      CheckGl("the shadow pass");
-    } else if (pass.id == effects::PassId::kOutlines) {
-      impl_->outlines.Run(impl_->gbuffer, cam, o.outline, impl_->outline);
-      CheckGl("the outline pass");
-    } else if (pass.id == effects::PassId::kDepthHalos) {
-      raster::Camera view;
-      if (effects::DepthHaloCamera(scene, cam, o.nearClip, view))
-        impl_->depthHalos.Run(scene, view, impl_->gbuffer, o.depthHalo, impl_->depthHalo);
-      else
-        impl_->depthHalos.Skip(impl_->gbuffer, impl_->depthHalo);
-      CheckGl("the depth halo pass");
-    } else if (pass.id == effects::PassId::kShading) {
-      // Lines, caps and the depth cue need only the G-buffer; outlines come from their pass.
-      effects::ShadeInputs inputs = effects::MakeShadeInputs(o, scene, cam);
-      if (o.outlines) inputs.outline = impl_->outline;
-      if (o.shadows) inputs.shadow = impl_->shadow;
-      if (o.depthHalos) inputs.halo = impl_->depthHalo;
-      if (o.ao != effects::AoMode::kNone) inputs.ambientOcclusion = impl_->ao;
-      impl_->shading.Run(impl_->gbuffer, o.ssaa, o.shading, effects::Backdrop{o.background, o.transparent},
-                         &inputs);
-      glFinish();
-      CheckGl("the shading pass");
-    } else {
-      continue;  // the AOVs are taken from the read-back below
-    }
+    kGlPasses[size_t(pass.id)](context);
+    glFinish();  // each timed pass ends with glFinish
+    CheckGl(pass.name);
     const auto passEnd = Clock::now();
     if (pass.id == effects::PassId::kShading) s.shadingMs = MsBetween(passStart, passEnd);
     f.passes.push_back({std::string("gl ") + pass.name, MsBetween(t0, passStart), MsBetween(passStart, passEnd), pass.reads,
