@@ -78,22 +78,9 @@ void DepthHalosPass::Run(const raster::PrimitiveScene& scene, const raster::Came
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, buffers[1]);
   glBindTextureUnit(0, g.color[kAttDepth]);
   glBindImageTexture(0, accumulator, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
-  if (count > 0) {
-    // Drawn into the plane's framebuffer (which the resolve overwrites): the accumulator image is
-    // the output.
-    glBindFramebuffer(GL_FRAMEBUFFER, target.fbo);
-    glViewport(0, 0, g.width, g.height);
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_BLEND);
-    glUseProgram(p);
-    GLuint vao = 0;
-    glCreateVertexArrays(1, &vao);
-    glBindVertexArray(vao);
-    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, count);
-    glBindVertexArray(0);
-    glDeleteVertexArrays(1, &vao);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  }
+  // Drawn into the plane's framebuffer (which the resolve overwrites): the accumulator image is
+  // the output.
+  if (count > 0) DrawProcedural(p, target.fbo, g.width, g.height, GL_TRIANGLE_STRIP, 4, count);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
   glProgramUniform1f(resolve, glGetUniformLocation(resolve, "uInvOne"), 1.0f / float(effects::detail::kDepthHaloOne));
   glBindTextureUnit(0, accumulator);

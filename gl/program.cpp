@@ -111,7 +111,8 @@ uint32_t BuildProgram(const std::string& vertexPath, const std::string& fragment
   return program;
 }
 
-void DrawFullscreen(uint32_t program, uint32_t fbo, int width, int height) {
+void DrawProcedural(uint32_t program, uint32_t fbo, int width, int height, uint32_t mode, int vertices,
+                    int instances) {
   glBindFramebuffer(GL_FRAMEBUFFER, fbo);
   glViewport(0, 0, width, height);
   glDisable(GL_DEPTH_TEST);
@@ -120,10 +121,14 @@ void DrawFullscreen(uint32_t program, uint32_t fbo, int width, int height) {
   GLuint vao = 0;
   glCreateVertexArrays(1, &vao);
   glBindVertexArray(vao);
-  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glDrawArraysInstanced(GLenum(mode), 0, vertices, instances);
   glBindVertexArray(0);
   glDeleteVertexArrays(1, &vao);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void DrawFullscreen(uint32_t program, uint32_t fbo, int width, int height) {
+  DrawProcedural(program, fbo, width, height, GL_TRIANGLES, 3, 1);
 }
 
 namespace detail {

@@ -31,5 +31,9 @@ uint32_t BuildProgram(const std::string& vertexPath, const std::string& fragment
 // Runs `program` over every pixel of `fbo`'s width × height viewport (one triangle from
 // gl/shaders/fullscreen.vert; no depth test, no blending): the per-pixel passes.
 void DrawFullscreen(uint32_t program, uint32_t fbo, int width, int height);
+// The same machinery for any vertex-less draw: `instances` × `vertices` of primitive `mode`
+// (GL_TRIANGLES, GL_TRIANGLE_STRIP), positions made by the vertex shader from gl_VertexID.
+void DrawProcedural(uint32_t program, uint32_t fbo, int width, int height, uint32_t mode, int vertices,
+                    int instances);
 
 }  // namespace softmol::gl
