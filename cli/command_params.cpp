@@ -27,28 +27,63 @@ std::string GroupTitle(const std::string& group) {
 void ParamInputs::AddOptions(CLI::App& command, std::vector<Shape> shapes, const std::vector<std::string>& help,
                              const std::vector<std::string>& group) {
   shapes_ = std::move(shapes);
+  command_ = &command;
   texts_.assign(shapes_.size(), std::string());  // CLI11 keeps pointers into it: sized once
   options_.clear();
   for (size_t i = 0; i < shapes_.size(); ++i) {
     const Shape& s = shapes_[i];
     const std::string flag = (s.shortName ? std::string("-") + s.shortName + "," : std::string()) + "--" + s.name;
-    CLI::Option* o = s.isSwitch ? command.add_flag(flag, help[i]) : command.add_option(flag, texts_[i], help[i]);
+    CLI::Option* o = s.isSwitch     ? command.add_flag(flag, help[i])
+                     : s.repeatable ? command.add_option(flag, help[i])  // values read from results()
+                                    : command.add_option(flag, texts_[i], help[i]);
     if (!s.isSwitch) o->type_name(s.hint.empty() ? "TEXT" : s.hint);
     if (!s.isSwitch && !s.implicitValue.empty()) o->expected(0, 1);
+    // One value per occurrence, so a repeated flag never swallows the MOLECULE after it.
+    if (s.repeatable) o->expected(1)->allow_extra_args(false)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
     o->group(GroupTitle(group[i]));
     options_.push_back(o);
   }
 }
 
+// Flags are ordered after any scene value; each occurrence of a repeatable one in turn.
+constexpr size_t kFlagOrder = size_t(1) << 40;
+
 void ParamInputs::CollectFlags() {
   given_.clear();
-  for (size_t i = 0; i < shapes_.size(); ++i) {
-    if (options_[i]->count() == 0) continue;
+  std::vector<size_t> seen(shapes_.size(), 0);
+  const std::vector<CLI::Option*>& order = command_->parse_order();
+  for (size_t k = 0; k < order.size(); ++k) {
+    const auto it = std::find(options_.begin(), options_.end(), order[k]);
+    if (it == options_.end()) continue;  // CLI11's own (--help), or a positional
+    const size_t i = size_t(it - options_.begin());
     const Shape& s = shapes_[i];
-    std::string text = s.isSwitch ? "true" : texts_[i];
+    const size_t occurrence = seen[i]++;
+    if (!s.repeatable && occurrence > 0) continue;  // CLI11 kept one value
+    std::string text = s.isSwitch ? "true" : s.repeatable ? options_[i]->results().at(occurrence) : texts_[i];
     if (text.empty() && !s.implicitValue.empty()) text = s.implicitValue;
-    given_.push_back({i, text, io::FlagLocation(s.name)});
+    given_.push_back({i, text, io::FlagLocation(s.name), kFlagOrder + k});
   }
+}
+
+size_t ParamInputs::Rank(size_t param) const {
+  const std::string& sequence = shapes_[param].sequence;
+  if (sequence.empty()) return param;
+  for (size_t i = 0; i < shapes_.size(); ++i)
+    if (shapes_[i].sequence == sequence) return i;
+  return param;
+}
+
+std::vector<GivenValue> ParamInputs::Ordered() const {
+  std::vector<GivenValue> out = given_;
+  std::stable_sort(out.begin(), out.end(), [&](const GivenValue& a, const GivenValue& b) {
+    const size_t ra = Rank(a.param), rb = Rank(b.param);
+    return ra != rb ? ra < rb : a.order < b.order;
+  });
+  return out;
+}
+
+void ParamInputs::AddSceneValue(size_t param, std::string text, const io::SourceLocation& where) {
+  given_.push_back({param, std::move(text), where, given_.size()});
 }
 
 bool ParamInputs::Given(const std::string& name) const {
@@ -64,14 +99,20 @@ std::string ParamInputs::ReadScene(const std::string& path) {
       molecule = ResolveBesideScene(setting.values[0], path);
       continue;
     }
-    const auto it = std::find_if(shapes_.begin(), shapes_.end(), [&](const Shape& s) { return s.name == setting.key; });
+    const auto it = std::find_if(shapes_.begin(), shapes_.end(), [&](const Shape& s) { return s.sceneKey == setting.key; });
     if (it == shapes_.end())
       throw io::InputError({path}, "unknown key '" + setting.key +
                                        "' (keys are `softmol render` option names without the dashes, or \"molecule\")");
     const size_t i = size_t(it - shapes_.begin());
-    if (options_[i]->count() > 0) continue;  // given on the command line: the flag wins
+    if (!it->repeatable && options_[i]->count() > 0) continue;  // given on the command line: the flag wins
+    if (it->repeatable) {
+      AddSceneList(i, setting, where);
+      continue;
+    }
     std::string text = setting.values.empty() ? std::string() : setting.values[0];
-    if (it->isSwitch) {
+    if (setting.kind == io::SceneSetting::Kind::kObjectList) {
+      throw io::InputError(where, "expected a value, not a list of objects");
+    } else if (it->isSwitch) {
       if (setting.kind != io::SceneSetting::Kind::kBoolean) throw io::InputError(where, "expected true or false");
     } else if (setting.kind == io::SceneSetting::Kind::kBoolean) {
       throw io::InputError(where, "expected a value, not a boolean");
@@ -81,10 +122,25 @@ std::string ParamInputs::ReadScene(const std::string& path) {
       for (const std::string& v : setting.values) text += (text.empty() ? "" : ",") + v;
     }
     if (it->isPath) text = ResolveBesideScene(text, path);
-    given_.push_back({i, text, where});
+    AddSceneValue(i, text, where);
   }
-  std::stable_sort(given_.begin(), given_.end(), [](const GivenValue& a, const GivenValue& b) { return a.param < b.param; });
   return molecule;
+}
+
+// A repeatable parameter's scene value: one entry, a list of them, or a list of objects.
+void ParamInputs::AddSceneList(size_t param, const io::SceneSetting& setting, const io::SourceLocation& where) {
+  const Shape& s = shapes_[param];
+  if (setting.kind == io::SceneSetting::Kind::kBoolean) throw io::InputError(where, "expected a value, not a boolean");
+  if (setting.kind != io::SceneSetting::Kind::kObjectList) {
+    for (const std::string& v : setting.values) AddSceneValue(param, v, where);
+    return;
+  }
+  if (!s.fromObject) throw io::InputError(where, "expected values, not objects");
+  for (size_t k = 0; k < setting.objects.size(); ++k) {
+    io::SourceLocation entry = where;
+    entry.detail += ", entry " + std::to_string(k + 1);
+    AddSceneValue(param, s.fromObject(setting.objects[k], entry), entry);
+  }
 }
 
 }  // namespace softmol::cli

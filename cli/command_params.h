@@ -7,6 +7,7 @@
 // key.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,7 @@ struct GivenValue {
   size_t param = 0;  // index in the table
   std::string text;
   io::SourceLocation where;
+  size_t order = 0;  // position among the values given (scene file first, then flags)
 };
 
 // Type-independent part: the declarations' names and shapes, and the values given.
@@ -32,6 +34,9 @@ class ParamInputs {
     bool isSwitch = false, isPath = false;
     std::string implicitValue;
     char shortName = 0;
+    bool repeatable = false;
+    std::string sceneKey, sequence;
+    std::function<std::string(const io::SceneObject&, const io::SourceLocation&)> fromObject;
   };
   // Adds one option per shape to `command`, with `help[i]` as its description and `group[i]`.
   void AddOptions(CLI::App& command, std::vector<Shape> shapes, const std::vector<std::string>& help,
@@ -42,10 +47,17 @@ class ParamInputs {
   // names (or "molecule", which the caller's positional takes); unknown keys are errors.
   // Returns the scene's "molecule", resolved beside the scene, or "".
   std::string ReadScene(const std::string& path);
-  const std::vector<GivenValue>& given() const { return given_; }
+  // Every value given, in the order they are applied: by parameter, a sequence's parameters
+  // together in the order given (call after CollectFlags and ReadScene).
+  std::vector<GivenValue> Ordered() const;
   bool Given(const std::string& name) const;
 
  private:
+  void AddSceneValue(size_t param, std::string text, const io::SourceLocation& where);
+  void AddSceneList(size_t param, const io::SceneSetting& setting, const io::SourceLocation& where);
+  size_t Rank(size_t param) const;  // the first parameter of its sequence
+
+  CLI::App* command_ = nullptr;
   std::vector<Shape> shapes_;
   std::vector<CLI::Option*> options_;
   std::vector<std::string> texts_;  // CLI11's storage, one per parameter
@@ -62,10 +74,12 @@ class CommandParams {
     std::vector<ParamInputs::Shape> shapes;
     std::vector<std::string> help, group;
     for (const io::Param<Target>& p : table_) {
-      shapes.push_back({p.name, p.hint, p.isSwitch, p.isPath, p.implicitValue, p.shortName});
+      shapes.push_back({p.name, p.hint, p.isSwitch, p.isPath, p.implicitValue, p.shortName, p.repeatable,
+                        p.sceneKey.empty() ? p.name : p.sceneKey, p.sequence, p.fromObject});
       std::string line = p.help;
       const std::string def = p.get(defaults);
-      if (!p.isSwitch && !def.empty()) line += " (default " + def + ")";
+      if (!p.isSwitch && !p.repeatable && !def.empty()) line += " (default " + def + ")";
+      if (p.repeatable) line += " (repeatable)";
       help.push_back(line);
       group.push_back(p.group);
     }
@@ -76,9 +90,9 @@ class CommandParams {
   const io::ParamTable<Target>& table() const { return table_; }
 
   // Every given value, in table order (a scene key the command line also gave was dropped:
-  // the flag wins); throws io::InputError at the value's origin.
+  // the flag wins; repeatable ones add up); throws io::InputError at the value's origin.
   void Apply(Target& target) const {
-    for (const GivenValue& v : inputs_.given()) table_[v.param].set(target, v.text, v.where);
+    for (const GivenValue& v : inputs_.Ordered()) table_[v.param].set(target, v.text, v.where);
   }
 
  private:

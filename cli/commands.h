@@ -13,6 +13,7 @@
 #include "cli/command_params.h"
 #include "effects/frame_renderer.h"
 #include "raster/representation.h"
+#include "scene/layers.h"
 
 namespace softmol::cli {
 
@@ -32,9 +33,9 @@ int RunInfo(const InfoArgs& args);
 struct RenderArgs {
   std::string molecule;     // the argument, or the scene's "molecule"
   std::string scene;        // --scene scene.json; flags override it
-  std::string output = "softmol.png";
+  std::string output;       // "": the molecule's stem in the working directory (1tii.png)
   std::string size = "1024x768";
-  raster::Style style = raster::Style::kSpacefill;
+  scene::SceneLayers layers;  // --style, --show, --hide, --show-solvent, --color
   std::string assembly;
   std::string camera;       // EX,EY,EZ,TX,TY,TZ,UX,UY,UZ
   std::string rotate;       // X,Y,Z degrees
@@ -43,6 +44,9 @@ struct RenderArgs {
   std::string frames;       // A:B[:STEP], 0-based, inclusive; default all
   std::string highlight;    // selection to surround with a halo (Hermosilla §6.1)
   std::string backend = "cpu";  // cpu | gl (the OpenGL mirror; builds with SOFTMOL_BUILD_GL)
+  std::string view;         // scene/view.h text: the whole camera
+  bool printView = false;   // print the camera used, as --view text
+  bool orient = true;       // principal axes (false: the file's axes, framed by the bounding sphere)
   double fov = 30.0;
   double ortho = 0.0;       // view height, Å; 0 = perspective
   double zoom = 1.0;

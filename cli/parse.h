@@ -12,7 +12,7 @@ struct ImageSize {
   int width = 0, height = 0;
 };
 
-// "1920x1080" -> {1920, 1080}; each side 1..16384.
+// "1920x1080" -> {1920, 1080}; "1280" -> {1280, 960} (the default 4:3); each side 1..16384.
 ImageSize ParseSize(const std::string& text, const std::string& option);
 
 // "1,2.5,-3" -> exactly `count` finite numbers.

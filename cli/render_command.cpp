@@ -28,6 +28,9 @@
 #include "io/trajectory.h"
 #include "raster/camera.h"
 #include "raster/representation.h"
+#include "scene/colors.h"
+#include "scene/layers.h"
+#include "scene/view.h"
 #if SOFTMOL_HAVE_GL
 #include "gl/context_egl.h"
 #include "gl/frame_renderer.h"
@@ -52,15 +55,27 @@ std::string SiblingAovPath(const std::string& png) {
   return (p.parent_path() / (p.stem().string() + ".aov.exr")).string();
 }
 
-const std::vector<std::pair<std::string, raster::Style>> kStyles = {{"spacefill", raster::Style::kSpacefill},
-                                                                    {"balls", raster::Style::kBalls},
-                                                                    {"licorice", raster::Style::kLicorice},
-                                                                    {"ellipsoids", raster::Style::kEllipsoids}};
+// A repeatable layer option (--show, --hide): both append to one list of layers, in the order
+// given; the scene file's "layers" holds objects {"select", "style", "color"} or "SEL=STYLE".
+template <class Parse>
+io::Param<RenderArgs> LayerParam(std::string name, std::string hint, std::string help, Parse parse) {
+  io::Param<RenderArgs> p = io::ListParam<RenderArgs>(
+      name, [](auto& a) -> auto& { return a.layers.layers; }, std::move(hint), std::move(help), "molecule", parse,
+      [](const scene::Layer& l) { return scene::FormatLayer(l); });
+  p.sequence = "layers";
+  if (name == "show") p.sceneKey = "layers", p.fromObject = scene::LayerTextOfObject;
+  return p;
+}
 
-std::string StyleName(raster::Style style) {
-  for (const auto& [name, s] : kStyles)
-    if (s == style) return name;
-  return "?";
+io::Param<RenderArgs> ColorRuleParam() {
+  io::Param<RenderArgs> p = io::ListParam<RenderArgs>(
+      "color", [](auto& a) -> auto& { return a.layers.colors; }, "SCHEME|SEL=COLOR",
+      "Colour scheme (auto, element[:COLOR], chain, residue, ss, bfactor[:LO:HI], uniform:COLOR) or a colour, "
+      "for every atom or SEL=...; applied in order", "molecule",
+      [](std::string_view text, const io::SourceLocation& where) { return scene::ParseColorRule(text, where); },
+      [](const scene::ColorRule& r) { return scene::FormatColorRule(r); });
+  p.sceneKey = "colors";
+  return p;
 }
 
 // The options `softmol render` itself reads (files, framing, the job).
@@ -77,12 +92,23 @@ io::ParamTable<RenderArgs> JobParams() {
                             [](std::string_view text, const io::SourceLocation& where) {
                               (void)OutputKindOf(std::string(text), where);
                             }),
-      TextParam<RenderArgs>("size", [](auto& a) -> auto& { return a.size; }, "WIDTHxHEIGHT", "Image size", "output",
+      TextParam<RenderArgs>("size", [](auto& a) -> auto& { return a.size; }, "WIDTH[xHEIGHT]",
+                            "Image size; a width alone keeps the 4:3 aspect", "output",
                             [](std::string_view text, const io::SourceLocation& where) {
                               (void)ParseSize(std::string(text), where.ToString());
                             }),
-      ChoiceParam<RenderArgs>("style", [](auto& a) -> auto& { return a.style; }, kStyles, "Representation",
-                              "molecule"),
+      ChoiceParam<RenderArgs>("style", [](auto& a) -> auto& { return a.layers.style; }, scene::StyleNames(),
+                              "Representation of every atom (the first layer)", "molecule"),
+      LayerParam("show", "SEL=STYLE[,COLOR]",
+                 "Draw this selection in STYLE (and COLOR): a layer over the ones before it, e.g. ligand=balls",
+                 [](std::string_view text, const io::SourceLocation& where) { return scene::ParseLayer(text, where); }),
+      LayerParam("hide", "SELECTION", "Do not draw this selection (a hidden layer), e.g. hydrogen",
+                 [](std::string_view text, const io::SourceLocation& where) {
+                   return scene::ParseLayer(std::string(text) + "=hidden", where);
+                 }),
+      SwitchParam<RenderArgs>("show-solvent", [](auto& a) -> auto& { return a.layers.showSolvent; },
+                              "Draw the water too (hidden by default)", "molecule"),
+      ColorRuleParam(),
       TextParam<RenderArgs>("assembly", [](auto& a) -> auto& { return a.assembly; }, "ID", "Build biological assembly ID",
                             "molecule"),
       TextParam<RenderArgs>("trajectory", [](auto& a) -> auto& { return a.trajectory; }, "FILE",
@@ -94,6 +120,16 @@ io::ParamTable<RenderArgs> JobParams() {
       TextParam<RenderArgs>("highlight", [](auto& a) -> auto& { return a.highlight; }, "SELECTION",
                             "Surround this selection (e.g. ligand, \"resn RET\", chain B) with an object-space halo",
                             "halos"),
+      ChoiceParam<RenderArgs>("orient", [](auto& a) -> auto& { return a.orient; },
+                              std::vector<std::pair<std::string, bool>>{{"principal", true}, {"none", false}},
+                              "principal: the largest extent along x, then y, fitted tightly (PyMOL's orient); "
+                              "none: the file's axes framed by the bounding sphere (older renders)", "camera"),
+      TextParam<RenderArgs>("view", [](auto& a) -> auto& { return a.view; },
+                            "'eye=X,Y,Z target=X,Y,Z up=X,Y,Z fov=DEG near=N far=F'",
+                            "The whole camera, as --print-view prints it, or PyMOL's 18-number get_view", "camera",
+                            [](std::string_view text, const io::SourceLocation& where) { (void)scene::ParseView(text, where); }),
+      SwitchParam<RenderArgs>("print-view", [](auto& a) -> auto& { return a.printView; },
+                              "Print the camera used as a --view option (to reproduce or adjust the view)", "camera"),
       TextParam<RenderArgs>("camera", [](auto& a) -> auto& { return a.camera; }, "EX,EY,EZ,TX,TY,TZ,UX,UY,UZ",
                             "Explicit camera (eye, target, up; Å, world)", "camera", numbers(9)),
       RealParam<RenderArgs>("fov", [](auto& a) -> auto& { return a.fov; }, {0.1, 179.0}, "degrees",
@@ -101,7 +137,10 @@ io::ParamTable<RenderArgs> JobParams() {
       RealParam<RenderArgs>("ortho", [](auto& a) -> auto& { return a.ortho; }, {0.0, 1e9}, "Å",
                             "Orthographic projection with this view height; 0 = perspective", "camera"),
       TextParam<RenderArgs>("rotate", [](auto& a) -> auto& { return a.rotate; }, "X,Y,Z",
-                            "Rotate the molecule about its centre by X,Y,Z degrees", "camera", numbers(3)),
+                            "Turn the molecule about its centre: X degrees about the image's horizontal axis "
+                            "(positive tips the top away), then Y about its vertical axis (positive turns the "
+                            "right side away), then Z about the view axis (positive is counter-clockwise)",
+                            "camera", numbers(3)),
       RealParam<RenderArgs>("zoom", [](auto& a) -> auto& { return a.zoom; }, {1e-3, 1e3}, "",
                             "Zoom factor (> 1 moves closer)", "camera"),
       RealParam<RenderArgs>("near", [](auto& a) -> auto& { return a.nearPlane; }, {0.0, 1e9}, "Å",
@@ -204,15 +243,105 @@ void RequireMirrored(const effects::RenderOptions& ro) {
 }
 #endif
 
+// The default output: the molecule's stem in the working directory ("1tii.png" for
+// ../data/1tii.pdb.gz), numbered for several trajectory frames ("md_00000.png", ...).
+std::string DefaultOutput(const std::string& molecule, bool numbered) {
+  std::filesystem::path p = std::filesystem::path(molecule).filename();
+  if (p.extension() == ".gz") p = p.stem();
+  return p.stem().string() + (numbered ? "_%05d" : "") + ".png";
+}
+
+// Prints a warning for each layer that selects nothing: a valid answer, but often a typo.
+void WarnEmptyLayers(const std::vector<std::string>& selections) {
+  for (const std::string& s : selections)
+    std::fprintf(stderr, "softmol: warning: the layer '%s' selects no atom\n", s.c_str());
+}
+
+// The highlight halo's spheres: those of the selected atoms (Hermosilla §6.1 surrounds atoms).
+std::vector<uint8_t> HighlightedSpheres(const io::Selection& selection, const std::string& text,
+                                        const io::Molecule& mol, const raster::Representation& drawn) {
+  const std::vector<uint8_t> atoms = io::Evaluate(selection, mol);
+  std::vector<uint8_t> spheres(drawn.scene.spheres.size(), 0);
+  bool any = false;
+  for (size_t i = 0; i < drawn.sphereAtom.size(); ++i) any |= (spheres[i] = atoms[drawn.sphereAtom[i]]) != 0;
+  if (!any) {
+    const bool selectsAtoms = std::any_of(atoms.begin(), atoms.end(), [](uint8_t b) { return b != 0; });
+    throw io::InputError({"--highlight"}, "selection '" + text + "' " +
+                                              (selectsAtoms ? "has no atom drawn as a sphere (hidden, or ellipsoids)"
+                                                            : "matches no atom"));
+  }
+  return spheres;
+}
+
+// What frames the camera: the drawn primitives, without the ions when anything else is drawn
+// (the counter-ions of a simulation box would otherwise frame the whole box, not the solute).
+raster::PrimitiveScene FramingScene(const io::Molecule& mol, const raster::Representation& drawn) {
+  raster::PrimitiveScene framing;
+  const raster::SphereSet& s = drawn.scene.spheres;
+  for (size_t i = 0; i < s.size(); ++i)
+    if (i >= drawn.sphereAtom.size() || !(mol.flags[drawn.sphereAtom[i]] & io::kIon))
+      framing.spheres.Add({s.x[i], s.y[i], s.z[i]}, s.radius[i], s.color[i]);
+  if (framing.spheres.size() == 0 && drawn.scene.cylinders.size() == 0 && drawn.scene.ellipsoids.size() == 0)
+    return drawn.scene;  // only ions
+  framing.cylinders = drawn.scene.cylinders;
+  framing.ellipsoids = drawn.scene.ellipsoids;
+  return framing;
+}
+
+// near/far: --near/--far, else the --view's, else fitted to what is drawn.
+void FitDepthRange(const RenderArgs& a, const std::optional<scene::View>& view, const raster::PrimitiveScene& drawn,
+                   raster::Camera& cam) {
+  raster::FitNearFar(cam, drawn);
+  if (view && view->farPlane > 0) cam.nearPlane = view->nearPlane, cam.farPlane = view->farPlane;
+  if (a.nearPlane > 0) cam.nearPlane = a.nearPlane;
+  if (a.farPlane > 0) cam.farPlane = a.farPlane;
+  if (cam.farPlane <= cam.nearPlane) throw io::InputError({"--far"}, "the far plane must be beyond the near plane");
+}
+
+// The camera: --view, or --camera, or the oriented (or file-axes) default; then --fov,
+// --ortho, --rotate, --zoom, and near/far fitted to the drawn scene unless given.
+raster::Camera FrameCamera(const RenderArgs& a, const std::optional<scene::View>& view,
+                           const raster::PrimitiveScene& drawn, const raster::PrimitiveScene& framing, ImageSize size) {
+  raster::Camera cam;
+  if (view) {
+    cam = scene::CameraOf(*view, size.width, size.height);
+  } else {
+    cam = a.orient ? raster::OrientedCamera(framing, size.width, size.height, a.fov)
+                   : raster::DefaultCamera(framing, size.width, size.height);
+    cam.fovYDegrees = a.fov;
+  }
+  if (!a.camera.empty()) {
+    const std::vector<double> v = ParseNumbers(a.camera, 9, "--camera");
+    cam.eye = {v[0], v[1], v[2]};
+    cam.target = {v[3], v[4], v[5]};
+    cam.up = {v[6], v[7], v[8]};
+    const glm::dvec3 dir = cam.target - cam.eye;
+    const glm::dvec3 side = glm::cross(dir, cam.up);
+    if (glm::dot(dir, dir) == 0.0 || glm::dot(side, side) == 0.0)
+      throw io::InputError({"--camera"}, "eye and target coincide, or up is parallel to the view direction");
+  }
+  if (a.ortho > 0) {
+    cam.orthographic = true;
+    cam.orthoHeight = a.ortho;
+  }
+  if (!a.rotate.empty()) {
+    const std::vector<double> r = ParseNumbers(a.rotate, 3, "--rotate");
+    raster::ApplyRotation(cam, {r[0], r[1], r[2]}, view ? cam.target : framing.Bounds().center);
+  }
+  if (a.zoom != 1.0) raster::ApplyZoom(cam, a.zoom);
+  FitDepthRange(a, view, drawn, cam);
+  return cam;
+}
+
 }  // namespace
 
 int RunRender(const RenderArgs& a) {
   // Every option was checked as it was parsed; what remains needs several of them together.
   if (a.molecule.empty())
     throw io::InputError({"MOLECULE"}, "no molecule: give a file, or \"molecule\" in the --scene file");
-  const OutputKind kind = OutputKindOf(a.output);
+  std::string output = a.output;  // "" until the frame count is known
+  const OutputKind kind = output.empty() ? OutputKind::kPng : OutputKindOf(output);
   const ImageSize size = ParseSize(a.size, "--size");
-  const raster::Style style = a.style;
   effects::RenderOptions ro = FrameOptionsOf(a);
   const uint32_t aovs = ro.aovs;
 #if !SOFTMOL_HAVE_GL
@@ -245,8 +374,7 @@ int RunRender(const RenderArgs& a) {
 
   ProfileTrace trace;
   const Clock::time_point start = Clock::now();
-  const bool needsBonds = style != raster::Style::kSpacefill;  // sticks, and the ellipsoids' bonds
-  LoadedMolecule loaded = LoadMolecule(a.molecule, a.assembly, a.trajectory, needsBonds);
+  LoadedMolecule loaded = LoadMolecule(a.molecule, a.assembly, a.trajectory, scene::NeedsBonds(a.layers));
   // Trajectory frames to render (validated before any rendering), and the output names.
   std::unique_ptr<io::TrajectoryReader> trajectory;
   std::vector<size_t> frameIndices;
@@ -255,11 +383,13 @@ int RunRender(const RenderArgs& a) {
     trajectory = io::OpenTrajectory(a.trajectory, loaded.molecule.atomCount());
     frameIndices = ParseFrameRange(a.frames.empty() ? "0:" : a.frames, trajectory->Info().frameCount, "--frames");
     std::string name;
-    if (frameIndices.size() > 1 && !FormatFrameName(a.output, 0, name))
+    if (output.empty()) output = DefaultOutput(a.molecule, frameIndices.size() > 1);
+    if (frameIndices.size() > 1 && !FormatFrameName(output, 0, name))
       throw io::InputError({"-o"}, "several frames need a numbered output name with one %d or %0Nd, e.g. frame_%05d.png");
   } else if (!a.frames.empty()) {
     throw io::InputError({"--frames"}, "--frames needs --trajectory FILE");
   }
+  if (output.empty()) output = DefaultOutput(a.molecule, false);
   double t = 0;
   for (const StepTime& s : loaded.steps) {
     trace.AddComplete(s.name, "load", t, s.ms);
@@ -267,49 +397,22 @@ int RunRender(const RenderArgs& a) {
   }
 
   Clock::time_point t0 = Clock::now();
-  raster::RepresentationOptions rep;
-  rep.style = style;
-  const raster::PrimitiveScene scene = raster::BuildRepresentation(loaded.molecule, rep);
+  const scene::ResolvedLooks looks = scene::ResolveLooks(loaded.molecule, a.layers);
+  WarnEmptyLayers(looks.emptyLayers);
+  const raster::RepresentationOptions rep;
+  const raster::Representation drawn = raster::BuildRepresentation(loaded.molecule, looks.looks, rep);
+  const raster::PrimitiveScene& scene = drawn.scene;
   const double repMs = MsSince(t0);
   trace.AddComplete("representation", "load", t, repMs);
   if (scene.size() == 0)
-    throw io::InputError({a.molecule}, "nothing to draw in style '" + StyleName(style) + "'");
+    throw io::InputError({a.molecule}, "nothing to draw: every atom is hidden (see --style, --show, --hide, --show-solvent)");
   if (ro.ao == effects::AoMode::kBaked) ro.bake = MakeBakeOptions(a.bake, scene);
-  if (highlight) {
-    // Halos need the selection's spheres: the per-atom styles draw sphere i for atom i.
-    if (scene.spheres.size() != loaded.molecule.atomCount())
-      throw io::InputError({"--highlight"}, "halos need one sphere per atom (styles spacefill, balls, licorice), not '" + StyleName(style) + "'");
-    ro.highlight.spheres = io::Evaluate(*highlight, loaded.molecule);
-    if (std::none_of(ro.highlight.spheres.begin(), ro.highlight.spheres.end(), [](uint8_t b) { return b != 0; }))
-      throw io::InputError({"--highlight"}, "selection '" + a.highlight + "' matches no atom");
-  }
+  if (highlight) ro.highlight.spheres = HighlightedSpheres(*highlight, a.highlight, loaded.molecule, drawn);
 
-  raster::Camera cam = raster::DefaultCamera(scene, size.width, size.height);
-  if (!a.camera.empty()) {
-    const std::vector<double> v = ParseNumbers(a.camera, 9, "--camera");
-    cam.eye = {v[0], v[1], v[2]};
-    cam.target = {v[3], v[4], v[5]};
-    cam.up = {v[6], v[7], v[8]};
-    const glm::dvec3 view = cam.target - cam.eye;
-    const glm::dvec3 side = glm::cross(view, cam.up);
-    if (glm::dot(view, view) == 0.0 || glm::dot(side, side) == 0.0)
-      throw io::InputError({"--camera"}, "eye and target coincide, or up is parallel to the view direction");
-  }
-  cam.fovYDegrees = a.fov;
-  if (a.ortho > 0) {
-    cam.orthographic = true;
-    cam.orthoHeight = a.ortho;
-  }
-  if (!a.rotate.empty()) {
-    const std::vector<double> r = ParseNumbers(a.rotate, 3, "--rotate");
-    raster::ApplyRotation(cam, {r[0], r[1], r[2]}, scene.Bounds().center);
-  }
-  if (a.zoom != 1.0) raster::ApplyZoom(cam, a.zoom);
-  raster::FitNearFar(cam, scene);
-  if (a.nearPlane > 0) cam.nearPlane = a.nearPlane;
-  if (a.farPlane > 0) cam.farPlane = a.farPlane;
-  if (cam.farPlane <= cam.nearPlane)
-    throw io::InputError({"--far"}, "the far plane must be beyond the near plane");
+  std::optional<scene::View> givenView;
+  if (!a.view.empty()) givenView = scene::ParseView(a.view, {"--view"});
+  raster::Camera cam = FrameCamera(a, givenView, scene, FramingScene(loaded.molecule, drawn), size);
+  if (a.printView) std::printf("--view '%s'\n", scene::FormatView(scene::ViewOf(cam)).c_str());
 
   effects::RenderedFrame frame;
   effects::FrameResources resources;
@@ -369,7 +472,7 @@ int RunRender(const RenderArgs& a) {
 
   if (!trajectory) {
     for (int k = 0; k < a.repeat; ++k) renderOnce(scene, cam);
-    writeOutputs(a.output);
+    writeOutputs(output);
   } else {
     // The camera stays where the topology framed it, so the molecule moves in a fixed view;
     // only near/far follow each frame (unless given). Bonds come from the topology.
@@ -381,13 +484,9 @@ int RunRender(const RenderArgs& a) {
       if (!trajectory->Next(coordinates))
         throw io::InputError({a.trajectory, 0, 0, "frame " + std::to_string(frameIndices[k])}, "frame is missing");
       io::ApplyFrame(coordinates, loaded.molecule);
-      moving = raster::BuildRepresentation(loaded.molecule, rep);
+      moving = raster::BuildRepresentation(loaded.molecule, looks.looks, rep).scene;
       raster::Camera view = cam;
-      raster::FitNearFar(view, moving);
-      if (a.nearPlane > 0) view.nearPlane = a.nearPlane;
-      if (a.farPlane > 0) view.farPlane = a.farPlane;
-      if (view.farPlane <= view.nearPlane)
-        throw io::InputError({"--far"}, "the far plane must be beyond the near plane");
+      FitDepthRange(a, givenView, moving, view);
       if (ro.highlight.trail > 0) {
         // Δt of §6.2: the simulation time between this frame and the last one rendered. A
         // trajectory without a time step (multi-model PDB) counts one ps per frame.
@@ -395,8 +494,8 @@ int RunRender(const RenderArgs& a) {
         ro.highlight.frameDelta = k == 0 ? 0.0 : stepPs * double(frameIndices[k] - frameIndices[k - 1]);
       }
       renderOnce(moving, view);
-      std::string name = a.output;
-      FormatFrameName(a.output, frameIndices[k], name);  // keeps a plain name for a single frame
+      std::string name = output;
+      FormatFrameName(output, frameIndices[k], name);  // keeps a plain name for a single frame
       writeOutputs(name);
       if (progress)
         std::fprintf(stderr, "\rframe %zu (%zu of %zu)   ", frameIndices[k], k + 1, frameIndices.size());
@@ -408,7 +507,7 @@ int RunRender(const RenderArgs& a) {
   if (!a.quiet) {
     std::printf("%s: %zu atoms, %zu spheres, %zu cylinders, %zu ellipsoids -> %s (%dx%d",
                 a.molecule.c_str(), loaded.molecule.atomCount(), scene.spheres.radius.size(),
-                scene.cylinders.radius.size(), scene.ellipsoids.color.size(), a.output.c_str(),
+                scene.cylinders.radius.size(), scene.ellipsoids.color.size(), output.c_str(),
                 frame.width, frame.height);
     if (ro.ssaa > 1) std::printf(", ssaa %d", ro.ssaa);
     if (trajectory) std::printf(", %zu trajectory frames", frameIndices.size());

@@ -22,6 +22,10 @@ enum AtomFlags : uint8_t {
   kPolymer = 1 << 5,     // standard amino-acid or nucleotide residue
 };
 
+// Secondary structure of a residue (from the file's HELIX/SHEET or struct_conf records, or
+// assigned from the backbone's geometry).
+enum class SecondaryStructure : uint8_t { kCoil, kHelix, kSheet };
+
 // A residue: consecutive atoms of one chain with the same number and insertion code.
 struct Residue {
   std::array<char, 8> name{};  // NUL-padded residue name, e.g. "ALA", "HOH", "ATP"
@@ -30,6 +34,7 @@ struct Residue {
   uint32_t chainIndex = 0;     // into Molecule::chains
   uint32_t firstAtom = 0;      // atoms [firstAtom, firstAtom + atomCount)
   uint32_t atomCount = 0;
+  SecondaryStructure ss = SecondaryStructure::kCoil;
 };
 
 struct Chain {

@@ -3,6 +3,8 @@
 #include <charconv>
 #include <cstdio>
 
+#include "io/color_names.h"
+
 namespace softmol::io {
 namespace {
 
@@ -80,14 +82,20 @@ size_t ParseChoiceValue(std::string_view text, const std::vector<std::string>& c
   throw InputError(where, "unknown value " + Quoted(text) + " (" + JoinChoices(choices, ", ") + ")");
 }
 
-uint32_t ParseColorValue(std::string_view text, const SourceLocation& where) {
+std::optional<uint32_t> ColorFromText(std::string_view text) {
   std::string_view s = Trim(text);
+  if (const std::optional<uint32_t> named = NamedColor(s)) return named;
   if (!s.empty() && s[0] == '#') s.remove_prefix(1);
   uint32_t v = 0;
   const auto r = std::from_chars(s.data(), s.data() + s.size(), v, 16);
-  if (s.size() != 6 || r.ec != std::errc() || r.ptr != s.data() + s.size())
-    throw InputError(where, "expected a colour as RRGGBB hex, e.g. ffffff, got " + Quoted(text));
+  if (s.size() != 6 || r.ec != std::errc() || r.ptr != s.data() + s.size()) return std::nullopt;
   return v;
+}
+
+uint32_t ParseColorValue(std::string_view text, const SourceLocation& where) {
+  if (const std::optional<uint32_t> rgb = ColorFromText(text)) return *rgb;
+  throw InputError(where, "expected a colour: RRGGBB hex (ff8800, #ff8800) or a CSS name (white, steelblue), got " +
+                              Quoted(text));
 }
 
 std::string FormatColor(uint32_t rgb) {

@@ -11,12 +11,14 @@
 #include <charconv>
 #include <cmath>
 #include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
 #include "io/error.h"
+#include "io/scene_file.h"
 
 namespace softmol::io {
 
@@ -30,6 +32,17 @@ struct Param {
   std::string implicitValue;   // value taken when given without one ("0.3"); empty: required
   bool isPath = false;         // a file: relative to the scene file's folder when set there
   char shortName = 0;          // a one-letter flag besides the long one ('o' for -o)
+  // May be given several times (--show A --show B; a list in a scene file): `set` is called
+  // once per value, in the order given, and appends. The scene file's list comes first, then
+  // the flags (a flag adds to the scene's list instead of replacing it).
+  bool repeatable = false;
+  std::string sceneKey;  // the scene file's key where it differs from the name ("layers")
+  // Repeatable parameters of one sequence are applied interleaved, in the order given
+  // (--show and --hide build one list of layers); empty: a sequence of its own.
+  std::string sequence;
+  // A scene-file object as this parameter's text ({"select": "ligand", "style": "balls"} →
+  // "ligand=balls"); unset: the parameter takes no objects.
+  std::function<std::string(const SceneObject&, const SourceLocation&)> fromObject;
   // Parses `text` into the target, or throws InputError at `where` (the flag or scene key).
   std::function<void(Target&, std::string_view text, const SourceLocation& where)> set;
   // The value as text, in a form `set` accepts back (defaults in --help, presets, round trips).
@@ -68,9 +81,12 @@ bool ParseBoolValue(std::string_view text, const SourceLocation& where);
 // The index of `text` in `choices`; the error lists them.
 size_t ParseChoiceValue(std::string_view text, const std::vector<std::string>& choices,
                         const SourceLocation& where);
-// "ffffff" or "#ffffff" → 0xRRGGBB (sRGB).
+// "ffffff", "#ffffff" or a CSS name ("white", io/color_names.h) → 0xRRGGBB (sRGB).
 uint32_t ParseColorValue(std::string_view text, const SourceLocation& where);
 std::string FormatColor(uint32_t rgb);  // "rrggbb"
+// The same without an error: nothing when `text` is not a colour (callers that also accept
+// other words, like colour schemes, try this first).
+std::optional<uint32_t> ColorFromText(std::string_view text);
 // Shortest text that reads back as the same double ("0.6", "2048", "1e-05").
 std::string FormatReal(double value);
 std::string FormatReal(float value);  // shortest that reads back as the same float ("0.6")
@@ -152,6 +168,7 @@ ParamTable<Outer> Lift(const ParamTable<Inner>& inner, Field field) {
   for (const Param<Inner>& q : inner) {
     Param<Outer> p = Declare<Outer>(q.name, q.hint, q.help, q.group);
     p.isSwitch = q.isSwitch, p.implicitValue = q.implicitValue, p.isPath = q.isPath, p.shortName = q.shortName;
+    p.repeatable = q.repeatable, p.sceneKey = q.sceneKey, p.sequence = q.sequence, p.fromObject = q.fromObject;
     p.set = [field, set = q.set](Outer& o, std::string_view text, const SourceLocation& where) {
       set(field(o), text, where);
     };
@@ -183,6 +200,24 @@ Param<Target> BitSetParam(std::string name, Field field, std::vector<std::pair<s
     std::string s;
     for (const auto& b : bits)
       if (field(t) & b.second) s += (s.empty() ? "" : ",") + b.first;
+    return s;
+  };
+  return p;
+}
+
+// A repeatable parameter that appends `parse(text)` to a std::vector field; `get` lists the
+// entries as `format` writes them, one per line (empty for none).
+template <class Target, class Field, class Parse, class Format>
+Param<Target> ListParam(std::string name, Field field, std::string hint, std::string help, std::string group,
+                        Parse parse, Format format) {
+  Param<Target> p = Declare<Target>(std::move(name), std::move(hint), std::move(help), std::move(group));
+  p.repeatable = true;
+  p.set = [field, parse](Target& t, std::string_view text, const SourceLocation& where) {
+    field(t).push_back(parse(text, where));
+  };
+  p.get = [field, format](const Target& t) {
+    std::string s;
+    for (const auto& e : field(t)) s += (s.empty() ? "" : "\n") + format(e);
     return s;
   };
   return p;

@@ -68,6 +68,31 @@ std::string MessageOf(const Json::exception& e) {
   return bracket == std::string::npos ? what : what.substr(bracket + 2);
 }
 
+std::string ListElementText(const Json& e, const std::string& name, const std::string& where) {
+  if (!(e.is_string() || e.is_number())) throw InputError({name}, where + "list elements must be strings or numbers");
+  try {
+    return ScalarText(e);
+  } catch (const Json::exception& ex) {
+    throw InputError({name}, where + MessageOf(ex));
+  }
+}
+
+// An element of a list of objects: {"select": "ligand", "style": "balls"}. Values are scalars.
+SceneObject FlatObject(const Json& e, const std::string& name, const std::string& where) {
+  SceneObject fields;
+  for (const auto& [k, v] : e.items()) {
+    if (v.is_null() || v.is_object() || v.is_array())
+      throw InputError({name}, where + "field '" + k + "': expected a string, number or boolean");
+    try {
+      fields.emplace_back(k, ScalarText(v));
+    } catch (const Json::exception& ex) {
+      throw InputError({name}, where + "field '" + k + "': " + MessageOf(ex));
+    }
+  }
+  if (fields.empty()) throw InputError({name}, where + "empty object");
+  return fields;
+}
+
 }  // namespace
 
 std::vector<SceneSetting> ParseSceneFile(const std::string& text, const std::string& name) {
@@ -93,16 +118,13 @@ std::vector<SceneSetting> ParseSceneFile(const std::string& text, const std::str
     if (value.is_object())
       throw InputError({name}, where + "expected a string, number, boolean or list, not an object");
     if (value.is_array()) {
-      s.kind = SceneSetting::Kind::kList;
       if (value.empty()) throw InputError({name}, where + "empty list");
+      s.kind = value.front().is_object() ? SceneSetting::Kind::kObjectList : SceneSetting::Kind::kList;
       for (const Json& e : value) {
-        if (!(e.is_string() || e.is_number()))
-          throw InputError({name}, where + "list elements must be strings or numbers");
-        try {
-          s.values.push_back(ScalarText(e));
-        } catch (const Json::exception& ex) {
-          throw InputError({name}, where + MessageOf(ex));
-        }
+        if (e.is_object() != (s.kind == SceneSetting::Kind::kObjectList))
+          throw InputError({name}, where + "a list holds either objects or values, not both");
+        if (e.is_object()) s.objects.push_back(FlatObject(e, name, where));
+        else s.values.push_back(ListElementText(e, name, where));
       }
     } else {
       s.kind = value.is_string()    ? SceneSetting::Kind::kString

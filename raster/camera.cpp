@@ -6,6 +6,9 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <numbers>
+#include <vector>
+
+#include "raster/representation.h"
 
 namespace softmol::raster {
 namespace {
@@ -16,7 +19,101 @@ glm::dvec3 Rotate(glm::dvec3 v, glm::dvec3 axis, double degrees) {
   const double c = std::cos(degrees * kDeg), s = std::sin(degrees * kDeg);
   return v * c + glm::cross(axis, v) * s + axis * glm::dot(axis, v) * (1.0 - c);
 }
+
+// A primitive as the fit sees it: a centre and, per view axis, its half-extent along it.
+struct Extent {
+  glm::dvec3 center;
+  glm::dvec3 half;  // along the view's x, y, z
+};
+
+// Calls f(center, radius-along(u)) for every drawable primitive: spheres and the cylinders'
+// end caps exactly, ellipsoids by their support function sqrt(Σ (u·a_k)²).
+template <class F>
+void ForEachPrimitive(const PrimitiveScene& s, F&& f) {
+  for (size_t i = 0; i < s.spheres.size(); ++i) {
+    const float r = s.spheres.radius[i];
+    if (!(r > 0.0f) || !std::isfinite(r)) continue;
+    f(glm::dvec3(s.spheres.x[i], s.spheres.y[i], s.spheres.z[i]), [r](glm::dvec3) { return double(r); });
+  }
+  for (size_t i = 0; i < s.cylinders.size(); ++i) {
+    const float r = s.cylinders.radius[i];
+    if (!(r > 0.0f) || !std::isfinite(r)) continue;
+    const auto radius = [r](glm::dvec3) { return double(r); };
+    f(glm::dvec3(s.cylinders.x0[i], s.cylinders.y0[i], s.cylinders.z0[i]), radius);
+    f(glm::dvec3(s.cylinders.x1[i], s.cylinders.y1[i], s.cylinders.z1[i]), radius);
+  }
+  for (size_t i = 0; i < s.ellipsoids.size(); ++i) {
+    const std::array<float, 9> a = s.ellipsoids.axes[i];
+    f(glm::dvec3(s.ellipsoids.x[i], s.ellipsoids.y[i], s.ellipsoids.z[i]), [a](glm::dvec3 u) {
+      double sum = 0.0;
+      for (int k = 0; k < 3; ++k) {
+        const double d = u.x * a[3 * k] + u.y * a[3 * k + 1] + u.z * a[3 * k + 2];
+        sum += d * d;
+      }
+      return std::sqrt(sum);
+    });
+  }
+}
+
+// The principal axes (columns: x largest extent, y next, z = x × y) of the primitives' centres.
+glm::dmat3 PrincipalAxes(const PrimitiveScene& scene) {
+  glm::dvec3 mean(0.0);
+  size_t n = 0;
+  ForEachPrimitive(scene, [&](glm::dvec3 c, auto&&) { mean += c, ++n; });
+  if (n == 0) return glm::dmat3(1.0);
+  mean /= double(n);
+  double cov[3][3] = {};
+  ForEachPrimitive(scene, [&](glm::dvec3 c, auto&&) {
+    const glm::dvec3 d = c - mean;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) cov[i][j] += d[i] * d[j];
+  });
+  double values[3], vectors[3][3];
+  SymmetricEigen3(cov, values, vectors);
+  const auto axis = [&](int k) {
+    glm::dvec3 v(vectors[k][0], vectors[k][1], vectors[k][2]);
+    int big = 0;
+    for (int i = 1; i < 3; ++i)
+      if (std::abs(v[i]) > std::abs(v[big])) big = i;
+    return v[big] < 0 ? -v : v;
+  };
+  const glm::dvec3 x = axis(2), y = axis(1);
+  return glm::dmat3(x, y, glm::cross(x, y));
+}
 }  // namespace
+
+Camera OrientedCamera(const PrimitiveScene& scene, int width, int height, double fovYDegrees) {
+  Camera cam;
+  cam.width = width, cam.height = height, cam.fovYDegrees = fovYDegrees;
+  const glm::dmat3 axes = PrincipalAxes(scene);
+  // The box of the silhouettes in view coordinates (any origin: world, projected on the axes).
+  glm::dvec3 lo(1e300), hi(-1e300);
+  std::vector<Extent> extents;
+  ForEachPrimitive(scene, [&](glm::dvec3 c, auto&& radiusAlong) {
+    Extent e{{glm::dot(c, axes[0]), glm::dot(c, axes[1]), glm::dot(c, axes[2])},
+             {radiusAlong(axes[0]), radiusAlong(axes[1]), radiusAlong(axes[2])}};
+    lo = glm::min(lo, e.center - e.half), hi = glm::max(hi, e.center + e.half);
+    extents.push_back(e);
+  });
+  if (extents.empty()) return DefaultCamera(scene, width, height);
+  const glm::dvec3 mid = 0.5 * (lo + hi);
+  const double aspect = double(width) / double(std::max(height, 1));
+  const double tanY = std::tan(0.5 * fovYDegrees * kDeg) * (1.0 - kFitMargin), tanX = tanY * aspect;
+  const double sinY = tanY / std::sqrt(1.0 + tanY * tanY), sinX = tanX / std::sqrt(1.0 + tanX * tanX);
+  // A sphere of radius r at (x, z) fits inside the plane of half-angle θ through the eye at
+  // (0, d) when d ≥ z + |x| / tan θ + r / sin θ.
+  double dist = 1e-3;
+  for (const Extent& e : extents) {
+    const glm::dvec3 p = e.center - mid;
+    dist = std::max(dist, p.z + std::abs(p.x) / tanX + e.half.x / sinX);
+    dist = std::max(dist, p.z + std::abs(p.y) / tanY + e.half.y / sinY);
+  }
+  cam.target = axes * mid;
+  cam.eye = cam.target + axes[2] * dist;
+  cam.up = axes[1];
+  cam.orthoHeight = std::max((hi.y - lo.y), (hi.x - lo.x) / aspect) / (1.0 - kFitMargin);
+  return cam;
+}
 
 Camera DefaultCamera(const PrimitiveScene& scene, int width, int height) {
   Camera cam;

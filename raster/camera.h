@@ -23,6 +23,14 @@ struct Camera {
 // at the distance where the sphere fits the smaller image dimension with a 5% margin.
 Camera DefaultCamera(const PrimitiveScene& scene, int width, int height);
 
+// PyMOL's `orient`, and a tight fit: the view axes are the principal axes of the primitives'
+// centres (largest extent along the image's x, the next along y, signs chosen so that each
+// axis's largest component is positive), the target the centre of their projected box, and
+// the eye at the distance (the view height, for orthographic views) where every primitive's
+// silhouette fits the field of view with kFitMargin on the limiting side.
+constexpr double kFitMargin = 0.04;  // of the half-width
+Camera OrientedCamera(const PrimitiveScene& scene, int width, int height, double fovYDegrees = 30.0);
+
 // Rotates the eye (and up) about `center` by X, then Y, then Z degrees in the camera's own
 // frame (so "--rotate 0,90,0" turns the molecule to show its side).
 void ApplyRotation(Camera& camera, glm::dvec3 degreesXYZ, glm::dvec3 center);

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "common/check.h"
+
 namespace softmol::raster {
 namespace {
 glm::dvec3 Pos(const io::Molecule& m, size_t i) { return {m.x[i], m.y[i], m.z[i]}; }
@@ -67,57 +69,86 @@ void SymmetricEigen3(const double m[3][3], double values[3], double vectors[3][3
   }
 }
 
-PrimitiveScene BuildRepresentation(const io::Molecule& mol, const RepresentationOptions& opt) {
-  PrimitiveScene s;
-  const size_t n = mol.atomCount();
-  auto addBonds = [&](float radius) {
-    for (size_t b = 0; b < mol.bondCount(); ++b) {
-      const uint32_t i = mol.bondA[b], j = mol.bondB[b];
-      s.cylinders.Add(Pos(mol, i), Pos(mol, j), radius, mol.color[i], mol.color[j]);
-    }
-  };
-  switch (opt.style) {
-    case Style::kSpacefill:
-      for (size_t i = 0; i < n; ++i) s.spheres.Add(Pos(mol, i), mol.vdwRadius[i], mol.color[i]);
-      break;
-    case Style::kBalls:
-      for (size_t i = 0; i < n; ++i)
-        s.spheres.Add(Pos(mol, i), opt.ballScale * mol.vdwRadius[i], mol.color[i]);
-      addBonds(opt.bondRadius);
-      break;
-    case Style::kLicorice:
-      for (size_t i = 0; i < n; ++i) s.spheres.Add(Pos(mol, i), opt.licoriceRadius, mol.color[i]);
-      addBonds(opt.licoriceRadius);
-      break;
+namespace {
+
+bool HasSticks(uint8_t style) {
+  return style == uint8_t(Style::kBalls) || style == uint8_t(Style::kLicorice) ||
+         style == uint8_t(Style::kEllipsoids);
+}
+
+float StickRadius(uint8_t style, const RepresentationOptions& opt) {
+  return style == uint8_t(Style::kLicorice) ? opt.licoriceRadius : opt.bondRadius;
+}
+
+// The thermal ellipsoid of atom i at scale c (its ANISOU tensor's eigenvectors times c·√λ), or
+// nothing when the atom has no positive-definite tensor.
+bool AnisouAxes(const io::Molecule& mol, size_t i, double c, std::array<float, 9>& axes) {
+  if (!(mol.flags[i] & io::kHasAnisou) || i >= mol.anisou.size()) return false;
+  const auto& u = mol.anisou[i];  // U11 U22 U33 U12 U13 U23
+  const double m[3][3] = {{u[0], u[3], u[4]}, {u[3], u[1], u[5]}, {u[4], u[5], u[2]}};
+  double values[3], vectors[3][3];
+  SymmetricEigen3(m, values, vectors);
+  if (!(values[0] > 0.0)) return false;  // NPD tensors fall back to a sphere
+  for (int k = 0; k < 3; ++k)
+    for (int r = 0; r < 3; ++r) axes[3 * k + r] = float(c * std::sqrt(values[k]) * vectors[k][r]);
+  return true;
+}
+
+// Isotropic thermal sphere: U = B / (8π²); without a usable B, a ball-and-stick sized sphere.
+float IsotropicRadius(const io::Molecule& mol, size_t i, double c, float ballScale) {
+  const double b = i < mol.bFactor.size() ? mol.bFactor[i] : 0.0;
+  return b > 0.0 ? float(c * std::sqrt(b / (8.0 * std::numbers::pi * std::numbers::pi)))
+                 : ballScale * mol.vdwRadius[i];
+}
+
+void AddAtom(const io::Molecule& mol, size_t i, const AtomLooks& looks, const RepresentationOptions& opt,
+             double ellipsoidScale, Representation& out) {
+  const uint32_t rgb = looks.color[i];
+  float radius = 0.0f;
+  switch (Style(looks.style[i])) {
+    case Style::kSpacefill: radius = mol.vdwRadius[i]; break;
+    case Style::kBalls: radius = opt.ballScale * mol.vdwRadius[i]; break;
+    case Style::kLicorice: radius = opt.licoriceRadius; break;
     case Style::kEllipsoids: {
-      const double c = EllipsoidScale(opt.ellipsoidProbability);
-      for (size_t i = 0; i < n; ++i) {
-        const bool aniso = (mol.flags[i] & io::kHasAnisou) && i < mol.anisou.size();
-        if (aniso) {
-          const auto& u = mol.anisou[i];  // U11 U22 U33 U12 U13 U23
-          const double m[3][3] = {{u[0], u[3], u[4]}, {u[3], u[1], u[5]}, {u[4], u[5], u[2]}};
-          double values[3], vectors[3][3];
-          SymmetricEigen3(m, values, vectors);
-          if (values[0] > 0.0) {  // positive definite; NPD tensors fall back to a sphere
-            std::array<float, 9> axes;
-            for (int k = 0; k < 3; ++k)
-              for (int r = 0; r < 3; ++r)
-                axes[3 * k + r] = float(c * std::sqrt(values[k]) * vectors[k][r]);
-            s.ellipsoids.Add(Pos(mol, i), axes, mol.color[i]);
-            continue;
-          }
-        }
-        // Isotropic: U = B / (8π²); without a usable B, a ball-and-stick sized sphere.
-        const double b = i < mol.bFactor.size() ? mol.bFactor[i] : 0.0;
-        const double r = b > 0.0 ? c * std::sqrt(b / (8.0 * std::numbers::pi * std::numbers::pi))
-                                 : opt.ballScale * mol.vdwRadius[i];
-        s.spheres.Add(Pos(mol, i), float(r), mol.color[i]);
+      std::array<float, 9> axes;
+      if (AnisouAxes(mol, i, ellipsoidScale, axes)) {
+        out.scene.ellipsoids.Add(Pos(mol, i), axes, rgb);
+        out.ellipsoidAtom.push_back(uint32_t(i));
+        return;
       }
-      addBonds(opt.bondRadius);
+      radius = IsotropicRadius(mol, i, ellipsoidScale, opt.ballScale);
       break;
     }
   }
-  return s;
+  out.scene.spheres.Add(Pos(mol, i), radius, rgb);
+  out.sphereAtom.push_back(uint32_t(i));
+}
+
+}  // namespace
+
+AtomLooks UniformLooks(const io::Molecule& mol, Style style) {
+  return {std::vector<uint8_t>(mol.atomCount(), uint8_t(style)), mol.color};
+}
+
+Representation BuildRepresentation(const io::Molecule& mol, const AtomLooks& looks,
+                                   const RepresentationOptions& opt) {
+  SOFTMOL_CHECK(looks.style.size() == mol.atomCount() && looks.color.size() == mol.atomCount());
+  Representation out;
+  const double c = EllipsoidScale(opt.ellipsoidProbability);
+  for (size_t i = 0; i < mol.atomCount(); ++i)
+    if (looks.style[i] != kHidden) AddAtom(mol, i, looks, opt, c, out);
+  for (size_t b = 0; b < mol.bondCount(); ++b) {
+    const uint32_t i = mol.bondA[b], j = mol.bondB[b];
+    if (!HasSticks(looks.style[i]) || !HasSticks(looks.style[j])) continue;
+    // Between two styles, the thinner stick (a ligand's balls bonded to licorice).
+    const float radius = std::min(StickRadius(looks.style[i], opt), StickRadius(looks.style[j], opt));
+    out.scene.cylinders.Add(Pos(mol, i), Pos(mol, j), radius, looks.color[i], looks.color[j]);
+  }
+  return out;
+}
+
+PrimitiveScene BuildRepresentation(const io::Molecule& mol, const RepresentationOptions& opt) {
+  return BuildRepresentation(mol, UniformLooks(mol, opt.style), opt).scene;
 }
 
 }  // namespace softmol::raster

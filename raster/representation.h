@@ -1,10 +1,14 @@
 // raster/representation.h — turns a molecule into quadric primitives: spacefill (van der
 // Waals spheres), balls (ball-and-stick: scaled spheres + bond cylinders coloured half and
 // half), licorice (sticks with joint spheres of the same radius) and thermal ellipsoids
-// (ANISOU at a given probability; atoms without one get an isotropic sphere).
+// (ANISOU at a given probability; atoms without one get an isotropic sphere). Each atom may
+// have its own style and colour (AtomLooks: the scene's layers and colour rules, resolved), or
+// be hidden: a hidden atom makes no primitive, so it casts no shadow and occludes no AO.
 #pragma once
 
 #include <array>
+#include <cstdint>
+#include <vector>
 
 #include "io/molecule.h"
 #include "raster/primitives.h"
@@ -21,6 +25,27 @@ struct RepresentationOptions {
   float ellipsoidProbability = 0.5f;  // ellipsoids: probability contour (0.5 → c = 1.5382)
 };
 
+// What each atom looks like: style[i] is a Style or kHidden; color[i] sRGB 0xRRGGBB.
+constexpr uint8_t kHidden = 0xFF;
+struct AtomLooks {
+  std::vector<uint8_t> style;
+  std::vector<uint32_t> color;
+};
+// Every atom in one style, in the molecule's element colours.
+AtomLooks UniformLooks(const io::Molecule& molecule, Style style);
+
+// The primitives, and which atom each sphere and ellipsoid draws (what the id AOV's ids and
+// per-atom effects such as the highlight halo map back through). Spheres and ellipsoids come
+// in atom order; a bond's cylinder is drawn when both its atoms are in a style with sticks
+// (balls, licorice, ellipsoids), coloured half and half.
+struct Representation {
+  PrimitiveScene scene;
+  std::vector<uint32_t> sphereAtom, ellipsoidAtom;
+};
+Representation BuildRepresentation(const io::Molecule& molecule, const AtomLooks& looks,
+                                   const RepresentationOptions& options);
+
+// Every atom in options.style and its element colour.
 PrimitiveScene BuildRepresentation(const io::Molecule& molecule,
                                    const RepresentationOptions& options);
 

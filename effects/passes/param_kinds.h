@@ -1,5 +1,5 @@
 // effects/passes/param_kinds.h — parameter kinds that only the effects know: colours typed as
-// sRGB hex and stored as linear RGB (shading happens in linear light, DESIGN.md).
+// sRGB hex or CSS names and stored as linear RGB (shading happens in linear light, DESIGN.md).
 #pragma once
 
 #include <optional>
@@ -20,7 +20,7 @@ inline std::string SrgbHex(glm::vec3 c) {
 
 template <class Target, class Field>  // Field: glm::vec3&
 io::Param<Target> ColorParam(std::string name, Field field, std::string help, std::string group) {
-  io::Param<Target> p = io::Declare<Target>(std::move(name), "RRGGBB", std::move(help), std::move(group));
+  io::Param<Target> p = io::Declare<Target>(std::move(name), "COLOR", std::move(help), std::move(group));
   p.set = [field](Target& t, std::string_view text, const io::SourceLocation& where) {
     field(t) = LinearFromSrgb(io::ParseColorValue(text, where));
   };
@@ -32,7 +32,7 @@ io::Param<Target> ColorParam(std::string name, Field field, std::string help, st
 // leaves it unset.
 template <class Target, class Field>  // Field: std::optional<glm::vec3>&
 io::Param<Target> OptionalColorParam(std::string name, Field field, std::string help, std::string group) {
-  io::Param<Target> p = io::Declare<Target>(std::move(name), "RRGGBB", std::move(help), std::move(group));
+  io::Param<Target> p = io::Declare<Target>(std::move(name), "COLOR", std::move(help), std::move(group));
   p.set = [field](Target& t, std::string_view text, const io::SourceLocation& where) {
     if (text.empty()) field(t).reset();
     else field(t) = LinearFromSrgb(io::ParseColorValue(text, where));

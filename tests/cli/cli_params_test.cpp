@@ -34,10 +34,12 @@ std::string SampleValue(const io::Param<RenderArgs>& p, const std::string& def) 
       {"output", "/tmp/x.exr"}, {"size", "64x48"},      {"assembly", "1"},       {"trajectory", "/tmp/t.xtc"},
       {"frames", "0:3"},        {"highlight", "ligand"}, {"camera", "1,2,3,0,0,0,0,1,0"},
       {"rotate", "10,20,30"},   {"profile", "/tmp/p.json"}, {"fog-color", "123456"},
+      {"show", "ligand=balls,orange"}, {"hide", "hydrogen"}, {"color", "chain B=bfactor:10:20"},
+      {"view", "eye=1,2,3 target=0,0,0 up=0,1,0 fov=25 near=1 far=9"},
       {"pcf-pretest", "0"}};  // its upper end would break the rule "at most --pcf-samples"
   if (p.isSwitch) return "true";
   if (const auto it = kText.find(p.name); it != kText.end()) return it->second;
-  if (p.hint == "RRGGBB") return "123456";
+  if (p.hint == "COLOR") return "123456";
   if (p.hint.find('|') != std::string::npos) {
     std::stringstream choices(p.hint);
     for (std::string c; std::getline(choices, c, '|');)
@@ -100,8 +102,10 @@ TEST(CliParams, EveryOptionReachesTheSameFieldFromFlagsAndScenes) {
     const std::string def = p.get(defaults);
     const std::string value = SampleValue(p, def);
     SCOPED_TRACE(p.name + " = " + value);
-    const RenderArgs byFlag = Parse("x.pdb --" + p.name + (p.isSwitch ? "" : " " + value));
-    const RenderArgs byScene = Parse("x.pdb", "{\"" + p.name + "\": " + JsonValue(p, value) + "}");
+    const std::string quoted = value.find(' ') == std::string::npos ? value : "\"" + value + "\"";
+    const RenderArgs byFlag = Parse("x.pdb --" + p.name + (p.isSwitch ? "" : " " + quoted));
+    const std::string key = p.sceneKey.empty() ? p.name : p.sceneKey;
+    const RenderArgs byScene = Parse("x.pdb", "{\"" + key + "\": " + JsonValue(p, value) + "}");
     EXPECT_NE(p.get(byFlag), def) << "the flag did not change it";
     for (const io::Param<RenderArgs>& q : params) EXPECT_EQ(q.get(byFlag), q.get(byScene)) << q.name;
   }
@@ -114,7 +118,8 @@ TEST(CliParams, EveryBadValueFailsTheSameWayFromFlagsAndScenes) {
     if (p.isSwitch) continue;  // a flag takes no value; a scene's non-boolean is its own error
     const std::string bad = "%bad";
     const std::string byFlag = ErrorOf("x.pdb --" + p.name + " " + bad);
-    const std::string byScene = ErrorOf("x.pdb", "{\"" + p.name + "\": \"" + bad + "\"}");
+    const std::string key = p.sceneKey.empty() ? p.name : p.sceneKey;
+    const std::string byScene = ErrorOf("x.pdb", "{\"" + key + "\": \"" + bad + "\"}");
     EXPECT_EQ(byFlag, byScene) << p.name;
     checked += byFlag != "(accepted)";
   }

@@ -83,7 +83,9 @@ TEST(CliRender, ExrCarriesAovChannels) {
     } else {
       ++covered;
       EXPECT_TRUE(std::isfinite(z->values[i]) && z->values[i] > 0);
-      EXPECT_GE(nz->values[i], -1e-3f) << "a visible surface faces the viewer";
+      // A visible surface faces the eye: its eye-space normal is at most the ray's angle off
+      // the view axis away from +z (fov 30° at 4:3: 24° at the corners, sin 24° = 0.41).
+      EXPECT_GE(nz->values[i], -0.41f) << "a visible surface faces the viewer";
     }
   }
   EXPECT_GT(covered, 0u);

@@ -17,7 +17,7 @@ namespace {
 constexpr double kColorAgreement = 0.999;
 
 // Plain, and with the effects the GL mirror computes from its own G-buffer (contour lines,
-// near-plane caps, depth cue, Sobel outlines, shadows, cone and baked AO, depth halos; il2's default camera is ~120 Å from its centre, so the clip cuts it).
+// near-plane caps, depth cue, Sobel outlines, shadows, cone and baked AO, depth halos; il2's default camera is ~84 Å from its centre, so the clip cuts it).
 class CliBackend : public testing::TestWithParam<const char*> {};
 
 TEST_P(CliBackend, GlPngMatchesCpuPng) {
@@ -50,11 +50,11 @@ TEST_P(CliBackend, GlPngMatchesCpuPng) {
 
 INSTANTIATE_TEST_SUITE_P(Effects, CliBackend,
                          testing::Values("", "--contours 0.3 --contour-depth-aware --depth-cue 0.5",
-                                         "--near-clip 115 --contours", "--outlines",
+                                         "--near-clip 82 --contours", "--outlines",
                                          "--shadows --shadow-map 512 --pcf-samples 32",
                                          "--ao cone --cones 5 --ao-grid 64",
                                          "--ao baked --ao-directions 32 --ao-map 256 --ao-sphere-map cube",
-                                         "--halos --near-clip 118"));
+                                         "--halos --near-clip 86"));
 
 TEST(CliBackendErrors, UnknownBackendIsAnError) {
   const auto dir = softmol::test::ScratchDir("cli_backend_bad");

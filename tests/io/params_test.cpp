@@ -122,7 +122,8 @@ TEST(Params, LiftedParamsReachTheNestedStruct) {
 
 TEST(Params, ColoursAndReals) {
   EXPECT_EQ(ParseColorValue("#FFcc00", FlagLocation("c")), 0xFFCC00u);
-  EXPECT_THROW(ParseColorValue("red", FlagLocation("c")), InputError);
+  EXPECT_EQ(ParseColorValue("red", FlagLocation("c")), 0xFF0000u);  // a CSS name
+  EXPECT_THROW(ParseColorValue("reddish", FlagLocation("c")), InputError);
   EXPECT_THROW(ParseColorValue("12345", FlagLocation("c")), InputError);
   EXPECT_EQ(FormatColor(0x0a0b0c), "0a0b0c");
   EXPECT_EQ(FormatReal(30.0), "30");
