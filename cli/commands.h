@@ -35,6 +35,7 @@ struct RenderArgs {
   std::string output = "softmol.png";
   std::string size = "1024x768";
   raster::Style style = raster::Style::kSpacefill;
+  bool helixCylinders = false;  // --helix cylinder (style tube)
   std::string assembly;
   std::string camera;       // EX,EY,EZ,TX,TY,TZ,UX,UY,UZ
   std::string rotate;       // X,Y,Z degrees

@@ -55,7 +55,8 @@ std::string SiblingAovPath(const std::string& png) {
 const std::vector<std::pair<std::string, raster::Style>> kStyles = {{"spacefill", raster::Style::kSpacefill},
                                                                     {"balls", raster::Style::kBalls},
                                                                     {"licorice", raster::Style::kLicorice},
-                                                                    {"ellipsoids", raster::Style::kEllipsoids}};
+                                                                    {"ellipsoids", raster::Style::kEllipsoids},
+                                                                    {"tube", raster::Style::kTube}};
 
 std::string StyleName(raster::Style style) {
   for (const auto& [name, s] : kStyles)
@@ -82,6 +83,10 @@ io::ParamTable<RenderArgs> JobParams() {
                               (void)ParseSize(std::string(text), where.ToString());
                             }),
       ChoiceParam<RenderArgs>("style", [](auto& a) -> auto& { return a.style; }, kStyles, "Representation",
+                              "molecule"),
+      ChoiceParam<RenderArgs>("helix", [](auto& a) -> auto& { return a.helixCylinders; },
+                              std::vector<std::pair<std::string, bool>>{{"tube", false}, {"cylinder", true}},
+                              "Style tube: helices follow the tube, or are one cylinder each along their axis",
                               "molecule"),
       TextParam<RenderArgs>("assembly", [](auto& a) -> auto& { return a.assembly; }, "ID", "Build biological assembly ID",
                             "molecule"),
@@ -245,7 +250,8 @@ int RunRender(const RenderArgs& a) {
 
   ProfileTrace trace;
   const Clock::time_point start = Clock::now();
-  const bool needsBonds = style != raster::Style::kSpacefill;  // sticks, and the ellipsoids' bonds
+  // sticks, and the ellipsoids' bonds
+  const bool needsBonds = style != raster::Style::kSpacefill && style != raster::Style::kTube;
   LoadedMolecule loaded = LoadMolecule(a.molecule, a.assembly, a.trajectory, needsBonds);
   // Trajectory frames to render (validated before any rendering), and the output names.
   std::unique_ptr<io::TrajectoryReader> trajectory;
@@ -269,6 +275,7 @@ int RunRender(const RenderArgs& a) {
   Clock::time_point t0 = Clock::now();
   raster::RepresentationOptions rep;
   rep.style = style;
+  rep.tube.helixCylinders = a.helixCylinders;
   const raster::PrimitiveScene scene = raster::BuildRepresentation(loaded.molecule, rep);
   const double repMs = MsSince(t0);
   trace.AddComplete("representation", "load", t, repMs);

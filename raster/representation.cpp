@@ -116,6 +116,9 @@ PrimitiveScene BuildRepresentation(const io::Molecule& mol, const Representation
       addBonds(opt.bondRadius);
       break;
     }
+    case Style::kTube:
+      AddTube(mol, std::vector<uint8_t>(n, 1), mol.color, opt.tube, s);
+      break;
   }
   return s;
 }

@@ -1,17 +1,19 @@
 // raster/representation.h — turns a molecule into quadric primitives: spacefill (van der
 // Waals spheres), balls (ball-and-stick: scaled spheres + bond cylinders coloured half and
 // half), licorice (sticks with joint spheres of the same radius) and thermal ellipsoids
-// (ANISOU at a given probability; atoms without one get an isotropic sphere).
+// (ANISOU at a given probability; atoms without one get an isotropic sphere) and the backbone
+// tube (raster/tube.h).
 #pragma once
 
 #include <array>
 
 #include "io/molecule.h"
 #include "raster/primitives.h"
+#include "raster/tube.h"
 
 namespace softmol::raster {
 
-enum class Style { kSpacefill, kBalls, kLicorice, kEllipsoids };
+enum class Style { kSpacefill, kBalls, kLicorice, kEllipsoids, kTube };
 
 struct RepresentationOptions {
   Style style = Style::kSpacefill;
@@ -19,6 +21,7 @@ struct RepresentationOptions {
   float bondRadius = 0.2f;  // balls and ellipsoids: bond cylinder radius, Å
   float licoriceRadius = 0.25f;       // licorice: stick and joint radius, Å (PyMOL stick_radius)
   float ellipsoidProbability = 0.5f;  // ellipsoids: probability contour (0.5 → c = 1.5382)
+  TubeOptions tube;                   // tube: the backbone trace of every chain (raster/tube.h)
 };
 
 PrimitiveScene BuildRepresentation(const io::Molecule& molecule,
