@@ -250,7 +250,7 @@ int RunRender(const RenderArgs& a) {
 
   ProfileTrace trace;
   const Clock::time_point start = Clock::now();
-  // sticks, and the ellipsoids' bonds
+  // Bonds: sticks and the ellipsoids' (the tube follows CA/P, not bonds).
   const bool needsBonds = style != raster::Style::kSpacefill && style != raster::Style::kTube;
   LoadedMolecule loaded = LoadMolecule(a.molecule, a.assembly, a.trajectory, needsBonds);
   // Trajectory frames to render (validated before any rendering), and the output names.
