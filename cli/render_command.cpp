@@ -109,6 +109,10 @@ io::ParamTable<RenderArgs> JobParams() {
       SwitchParam<RenderArgs>("show-solvent", [](auto& a) -> auto& { return a.layers.showSolvent; },
                               "Draw the water too (hidden by default)", "molecule"),
       ColorRuleParam(),
+      ChoiceParam<RenderArgs>("helix", [](auto& a) -> auto& { return a.helixCylinders; },
+                              std::vector<std::pair<std::string, bool>>{{"tube", false}, {"cylinder", true}},
+                              "Style tube: helices follow the tube, or are one cylinder each along their axis",
+                              "molecule"),
       TextParam<RenderArgs>("assembly", [](auto& a) -> auto& { return a.assembly; }, "ID", "Build biological assembly ID",
                             "molecule"),
       TextParam<RenderArgs>("trajectory", [](auto& a) -> auto& { return a.trajectory; }, "FILE",
@@ -399,7 +403,8 @@ int RunRender(const RenderArgs& a) {
   Clock::time_point t0 = Clock::now();
   const scene::ResolvedLooks looks = scene::ResolveLooks(loaded.molecule, a.layers);
   WarnEmptyLayers(looks.emptyLayers);
-  const raster::RepresentationOptions rep;
+  raster::RepresentationOptions rep;
+  rep.tube.helixCylinders = a.helixCylinders;
   const raster::Representation drawn = raster::BuildRepresentation(loaded.molecule, looks.looks, rep);
   const raster::PrimitiveScene& scene = drawn.scene;
   const double repMs = MsSince(t0);

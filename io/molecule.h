@@ -22,9 +22,9 @@ enum AtomFlags : uint8_t {
   kPolymer = 1 << 5,     // standard amino-acid or nucleotide residue
 };
 
-// Secondary structure of a residue (from the file's HELIX/SHEET or struct_conf records, or
-// assigned from the backbone's geometry).
-enum class SecondaryStructure : uint8_t { kCoil, kHelix, kSheet };
+// Secondary structure of a residue: from the file's HELIX/SHEET records (mmCIF struct_conf /
+// struct_sheet_range), else assigned from the CA trace (io/secondary_structure.h).
+enum class SecondaryStructure : uint8_t { kCoil = 0, kHelix = 1, kSheet = 2 };
 
 // A residue: consecutive atoms of one chain with the same number and insertion code.
 struct Residue {
@@ -72,6 +72,9 @@ struct Molecule {
   std::vector<Residue> residues;
   std::vector<Chain> chains;
   uint32_t modelCount = 1;  // models in the file (frames of a multi-model trajectory)
+  // Where Residue::ss comes from: the file's records, or the CA-geometry rule (P-SEA) because
+  // the file has none.
+  bool secondaryStructureFromFile = false;
 
   // ---- bonds, structure of arrays ----
   std::vector<uint32_t> bondA, bondB;   // atom indices, bondA < bondB, sorted, unique

@@ -32,6 +32,7 @@
 #include <gemmi/pdb.hpp>
 #include <gemmi/resinfo.hpp>
 
+#include "io/detail/secondary_structure_gemmi.h"
 #include "io/elements.h"
 #include "io/error.h"
 #include "io/structure_reader_cif.h"
@@ -608,6 +609,7 @@ Molecule BuildAssembly(const Molecule& au, const ReadState& state,
   out.sourcePath = au.sourcePath;
   out.title = au.title;
   out.modelCount = au.modelCount;
+  out.secondaryStructureFromFile = au.secondaryStructureFromFile;
   out.assemblyIds = au.assemblyIds;
   auto reserve = [total](auto& v) { v.reserve(total); };
   reserve(out.x), reserve(out.y), reserve(out.z), reserve(out.element), reserve(out.flags);
@@ -723,6 +725,7 @@ Molecule ReadMoleculeFromMemory(std::string_view bytes, const std::string& name,
   if (mol.atomCount() >= UINT32_MAX / 2)
     throw InputError(SourceLocation(name), "too many atoms (" + std::to_string(mol.atomCount()) + ")");
   CheckCoordinates(mol, name);
+  SetSecondaryStructure(detail::SecondaryStructureRanges(st), mol);
   if (unknown.count > 0)
     std::fprintf(stderr,
                  "softmol: warning: %s: %zu atom(s) of unknown element (first: '%s' in '%s'); "

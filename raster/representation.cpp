@@ -119,6 +119,7 @@ void AddAtom(const io::Molecule& mol, size_t i, const AtomLooks& looks, const Re
       radius = IsotropicRadius(mol, i, ellipsoidScale, opt.ballScale);
       break;
     }
+    case Style::kTube: return;  // drawn with its chain's backbone, below
   }
   out.scene.spheres.Add(Pos(mol, i), radius, rgb);
   out.sphereAtom.push_back(uint32_t(i));
@@ -144,6 +145,10 @@ Representation BuildRepresentation(const io::Molecule& mol, const AtomLooks& loo
     const float radius = std::min(StickRadius(looks.style[i], opt), StickRadius(looks.style[j], opt));
     out.scene.cylinders.Add(Pos(mol, i), Pos(mol, j), radius, looks.color[i], looks.color[j]);
   }
+  std::vector<uint8_t> inTube(mol.atomCount(), 0);
+  bool anyTube = false;
+  for (size_t i = 0; i < mol.atomCount(); ++i) anyTube |= (inTube[i] = looks.style[i] == uint8_t(Style::kTube)) != 0;
+  if (anyTube) AddTube(mol, inTube, looks.color, opt.tube, out.scene);  // after the atoms: ids stay per atom
   return out;
 }
 

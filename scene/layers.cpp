@@ -43,7 +43,8 @@ const std::vector<std::pair<std::string, raster::Style>>& StyleNames() {
       {"spacefill", raster::Style::kSpacefill},
       {"balls", raster::Style::kBalls},
       {"licorice", raster::Style::kLicorice},
-      {"ellipsoids", raster::Style::kEllipsoids}};
+      {"ellipsoids", raster::Style::kEllipsoids},
+      {"tube", raster::Style::kTube}};
   return kNames;
 }
 

@@ -264,12 +264,42 @@ TEST(CliRender, PsfTopologyWithDcdFrames) {
 
 TEST(CliRender, EveryStyleRenders) {
   const auto dir = ScratchDir("render_styles");
-  for (const char* style : {"spacefill", "balls", "licorice", "ellipsoids"}) {
+  for (const char* style : {"spacefill", "balls", "licorice", "ellipsoids", "tube"}) {
     const std::string out = (dir / (std::string(style) + ".png")).string();
     const CommandResult r = RunSoftmol("render '" + Data("1CRN.cif") + "' -o '" + out + "' --size 96x72 --style " + style, dir);
     EXPECT_EQ(r.exitCode, 0) << style << ": " << r.err;
     EXPECT_TRUE(std::filesystem::exists(out)) << style;
   }
+}
+
+TEST(CliRender, TubeShowsTheBackboneTheSameForAnyThreadCount) {
+  const auto dir = ScratchDir("render_tube");
+  std::string bytes[3];
+  const char* args[3] = {"--threads 1", "--threads 2", "--threads 2 --helix cylinder"};
+  for (int k = 0; k < 3; ++k) {
+    std::string name = "tube";
+    name += std::to_string(k);
+    name += ".png";
+    const std::string out = (dir / name).string();
+    const CommandResult r = RunSoftmol("render '" + Data("1tii.pdb") + "' -o '" + out +
+                                           "' --size 160x120 --background 000000 --style tube " + args[k],
+                                       dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    bytes[k] = Slurp(out);
+  }
+  EXPECT_EQ(bytes[0], bytes[1]) << "1 thread and 2 threads differ";
+  EXPECT_NE(bytes[1], bytes[2]) << "--helix cylinder changes nothing";
+  // A thin trace covers much less of the frame than the atoms' spheres would.
+  const io::Image8 img = io::ReadImage8((dir / "tube0.png").string());
+  size_t covered = 0;
+  for (size_t i = 0; i < img.pixels.size(); i += 3) covered += img.pixels[i] || img.pixels[i + 1] || img.pixels[i + 2];
+  EXPECT_GT(covered, size_t(160 * 120) / 50);
+  EXPECT_LT(covered, size_t(160 * 120) / 2);
+  const CommandResult bad = RunSoftmol("render '" + Data("1tii.pdb") + "' -o '" + (dir / "x.png").string() +
+                                           "' --style tube --helix ribbon",
+                                       dir);
+  EXPECT_EQ(bad.exitCode, 2);
+  EXPECT_NE(bad.err.find("--helix"), std::string::npos) << bad.err;
 }
 
 }  // namespace
