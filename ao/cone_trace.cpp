@@ -112,26 +112,10 @@ namespace {
 using namespace softmol::ao::shared;
 using raster::shared::PixelToRay;
 
-// The voxel at integer coordinates, 0 outside the grid (twin: Fetch in cone_trace-inl.h).
-inline float Fetch(const float* data, int res, int x, int y, int z) {
-  const bool inside = x >= 0 && x <= res - 1 && y >= 0 && y <= res - 1 && z >= 0 && z <= res - 1;
-  return inside ? data[(size_t(z) * size_t(res) + size_t(y)) * size_t(res) + size_t(x)] : 0.0f;
-}
-
-// Trilinear lookup at one level (twin: SampleLevel in cone_trace-inl.h).
+// Trilinear lookup at one level: the shared voxel lookup (ao/shared/prelude.h SampleVoxels;
+// twin: SampleLevel in cone_trace-inl.h).
 inline float SampleLevel(const ConeConstants& k, int level, float px, float py, float pz) {
-  const float cx = CellCoord(px, k.scale[level], k.resF[level]);
-  const float cy = CellCoord(py, k.scale[level], k.resF[level]);
-  const float cz = CellCoord(pz, k.scale[level], k.resF[level]);
-  const int ix = CellFloor(cx), iy = CellFloor(cy), iz = CellFloor(cz);
-  const float fx = cx - float(ix), fy = cy - float(iy), fz = cz - float(iz);
-  const float* data = k.data[level];
-  const int res = k.res[level];
-  return Trilinear(Fetch(data, res, ix, iy, iz), Fetch(data, res, ix + 1, iy, iz),
-                   Fetch(data, res, ix, iy + 1, iz), Fetch(data, res, ix + 1, iy + 1, iz),
-                   Fetch(data, res, ix, iy, iz + 1), Fetch(data, res, ix + 1, iy, iz + 1),
-                   Fetch(data, res, ix, iy + 1, iz + 1), Fetch(data, res, ix + 1, iy + 1, iz + 1),
-                   fx, fy, fz);
+  return SampleVoxels(k.data[level], k.res[level], k.resF[level], k.scale[level], px, py, pz);
 }
 
 }  // namespace

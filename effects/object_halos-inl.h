@@ -3,8 +3,8 @@
 // hwy/foreach_target.h (hence the toggle guard). One vector of pixels of a row at a time, each
 // lane marching its own ray (lanes that have run out of steps keep their sum), so every lane
 // adds the same samples in the same order as the scalar twin; the ragged row end runs the same
-// code at one lane. Every function mirrors its namesake in effects/object_halos.cpp (and the
-// lookup mirrors ao/shared/cone_step.inc). Only Add Sub Mul Div Sqrt, compares, IfThenElse,
+// code at one lane. Every function mirrors the scalar twin in effects/object_halos.cpp and the
+// shared formulas it calls (effects/shared/object_halo.inc; the lookup: ao/shared/cone_step.inc). Only Add Sub Mul Div Sqrt, compares, IfThenElse,
 // conversions and GatherIndex: no fused or approximate operations.
 #if defined(SOFTMOL_EFFECTS_OBJECT_HALOS_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef SOFTMOL_EFFECTS_OBJECT_HALOS_INL_H_
@@ -27,8 +27,9 @@ HWY_INLINE V HaloLerp(V a, V b, V t) {
   return hn::Add(a, hn::Mul(hn::Sub(b, a), t));
 }
 
-// Twin of HaloSample: ao::shared::CellCoord at scale 1, CellFloor, then Trilinear of eight
-// fetches (0 outside the grid: the index is clamped into it, gathered, the lane zeroed).
+// Twin of ao::shared::SampleVoxels at scale 1: LocateVoxel (CellCoord, CellFloor), then
+// Trilinear of eight fetches (0 outside the grid: the index is clamped into it, gathered, the
+// lane zeroed).
 template <class D, class V = hn::Vec<D>>
 HWY_INLINE V HaloSample(D d, const detail::HaloConstants& k, V px, V py, V pz) {
   const hn::RebindToSigned<D> di;
@@ -66,7 +67,7 @@ HWY_INLINE V HaloSample(D d, const detail::HaloConstants& k, V px, V py, V pz) {
   return HaloLerp(y0, y1, fz);
 }
 
-// Twin of BlockOccupied (as a mask).
+// Twin of BlockOccupied (as a mask), with HaloBlockCell.
 template <class D, class V = hn::Vec<D>>
 HWY_INLINE hn::Mask<D> BlockOccupied(D d, const detail::HaloConstants& k, V px, V py, V pz) {
   const hn::RebindToSigned<D> di;
@@ -83,7 +84,7 @@ HWY_INLINE hn::Mask<D> BlockOccupied(D d, const detail::HaloConstants& k, V px, 
   return hn::Gt(hn::GatherIndex(d, k.blocks, idx), zero);
 }
 
-// Twin of ClipSlab.
+// Twin of HaloClipSlab.
 template <class D, class V = hn::Vec<D>>
 HWY_INLINE void ClipSlab(D d, V a, V b, float lo, float hi, V& tLo, V& tHi) {
   const V big = hn::Set(d, detail::kHaloFar), vlo = hn::Set(d, lo), vhi = hn::Set(d, hi);
@@ -99,7 +100,7 @@ HWY_INLINE void ClipSlab(D d, V a, V b, float lo, float hi, V& tLo, V& tHi) {
   tHi = hn::IfThenElse(hn::Lt(farF, tHi), farF, tHi);
 }
 
-// Twin of MarchSegment.
+// Twin of MarchSegment: HaloMarchSteps, HaloStepT, HaloRayPoint, HaloGlow.
 template <class D, class V = hn::Vec<D>>
 HWY_INLINE V MarchSegment(D d, const detail::HaloConstants& k, V ax, V ay, V az, V bx, V by,
                           V bz, V speed, V t0, V t1) {
@@ -128,7 +129,8 @@ HWY_INLINE V MarchSegment(D d, const detail::HaloConstants& k, V ax, V ay, V az,
   return hn::Mul(hn::Mul(sum, seg), hn::Set(d, k.toWidth));
 }
 
-// Twin of HaloPixel for hn::Lanes(d) pixels starting at x.
+// Twin of HaloPixel for hn::Lanes(d) pixels starting at x: HaloRayAxisSetup, HaloKeepHit,
+// HaloSplit, HaloRaySpeed, HaloOpacity.
 template <class D>
 HWY_INLINE void HaloPixels(D d, const detail::HaloConstants& k, int x, int y, const float* depth,
                            float* halo) {

@@ -20,6 +20,7 @@
 
 #include "ao/shared/prelude.h"
 #include "common/check.h"
+#include "effects/shared/prelude.h"
 
 namespace softmol::effects {
 namespace {
@@ -28,11 +29,7 @@ namespace {
 // ligand-sized box and keeps the per-frame resample (and the temporal decay) at 262 K voxels.
 constexpr int kHaloResolution = 64;
 
-// The voxel at integer coordinates of a cubic grid, 0 outside it.
-inline float Fetch(const float* data, int res, int x, int y, int z) {
-  const bool inside = x >= 0 && x < res && y >= 0 && y < res && z >= 0 && z < res;
-  return inside ? data[(size_t(z) * size_t(res) + size_t(y)) * size_t(res) + size_t(x)] : 0.0f;
-}
+using ao::shared::FetchVoxel;
 
 // Trilinear interpolation written out (no texture unit here): p in voxel units of a grid
 // whose voxel i covers [i, i + 1), so voxel centres sit at i + 0.5.
@@ -41,10 +38,10 @@ inline float ResampleTrilinear(const float* data, int res, double px, double py,
   const double fx0 = std::floor(qx), fy0 = std::floor(qy), fz0 = std::floor(qz);
   const int x0 = int(fx0), y0 = int(fy0), z0 = int(fz0);
   const float fx = float(qx - fx0), fy = float(qy - fy0), fz = float(qz - fz0);
-  const float c00 = Fetch(data, res, x0, y0, z0) * (1 - fx) + Fetch(data, res, x0 + 1, y0, z0) * fx;
-  const float c10 = Fetch(data, res, x0, y0 + 1, z0) * (1 - fx) + Fetch(data, res, x0 + 1, y0 + 1, z0) * fx;
-  const float c01 = Fetch(data, res, x0, y0, z0 + 1) * (1 - fx) + Fetch(data, res, x0 + 1, y0, z0 + 1) * fx;
-  const float c11 = Fetch(data, res, x0, y0 + 1, z0 + 1) * (1 - fx) + Fetch(data, res, x0 + 1, y0 + 1, z0 + 1) * fx;
+  const float c00 = FetchVoxel(data, res, x0, y0, z0) * (1 - fx) + FetchVoxel(data, res, x0 + 1, y0, z0) * fx;
+  const float c10 = FetchVoxel(data, res, x0, y0 + 1, z0) * (1 - fx) + FetchVoxel(data, res, x0 + 1, y0 + 1, z0) * fx;
+  const float c01 = FetchVoxel(data, res, x0, y0, z0 + 1) * (1 - fx) + FetchVoxel(data, res, x0 + 1, y0, z0 + 1) * fx;
+  const float c11 = FetchVoxel(data, res, x0, y0 + 1, z0 + 1) * (1 - fx) + FetchVoxel(data, res, x0 + 1, y0 + 1, z0 + 1) * fx;
   const float c0 = c00 * (1 - fy) + c10 * fy;
   const float c1 = c01 * (1 - fy) + c11 * fy;
   return c0 * (1 - fz) + c1 * fz;
@@ -214,6 +211,19 @@ void UpdateHaloVolume(const ao::OccupancyPyramid& sel, const HighlightOptions& o
   vol.valid = true;
 }
 
+bool RefreshHaloVolume(const raster::PrimitiveScene& scene, const HighlightOptions& o, ao::PyramidOptions grid,
+                       raster::PrimitiveScene& selection, ao::OccupancyPyramid& pyramid, HaloVolume& volume) {
+  SelectSpheres(scene, o.spheres, selection);
+  if (selection.spheres.size() == 0) {
+    volume.valid = false;
+    return false;
+  }
+  grid.resolution = std::min(grid.resolution, kHaloResolution);
+  ao::UpdateOccupancyPyramid(selection, grid, pyramid);
+  UpdateHaloVolume(pyramid, o, scene.Bounds(), volume);
+  return volume.valid;
+}
+
 namespace detail {
 
 HWY_EXPORT(HaloRowImpl);
@@ -258,28 +268,9 @@ void HaloRow(const HaloConstants& k, int y, const float* depth, float* halo) noe
 
 namespace {
 
-using namespace softmol::ao::shared;
+using namespace softmol::effects::shared;
+using ao::shared::SampleVoxels;
 using raster::shared::PixelToRay;
-
-// The voxel at integer coordinates, 0 outside the grid (twin: fetch in HaloSample, -inl.h).
-inline float HaloFetch(const HaloConstants& k, int x, int y, int z) {
-  const int r = k.res;
-  const bool inside = x >= 0 && x <= r - 1 && y >= 0 && y <= r - 1 && z >= 0 && z <= r - 1;
-  return inside ? k.data[(size_t(z) * size_t(r) + size_t(y)) * size_t(r) + size_t(x)] : 0.0f;
-}
-
-// Trilinear lookup of the halo volume at p (voxel units; voxel i's centre at i + 0.5), with
-// the cone tracer's formulas (ao/shared/cone_step.inc) at scale 1.
-inline float HaloSample(const HaloConstants& k, float px, float py, float pz) {
-  const float cx = CellCoord(px, 1.0f, k.resF), cy = CellCoord(py, 1.0f, k.resF),
-              cz = CellCoord(pz, 1.0f, k.resF);
-  const int ix = CellFloor(cx), iy = CellFloor(cy), iz = CellFloor(cz);
-  const float fx = cx - float(ix), fy = cy - float(iy), fz = cz - float(iz);
-  return Trilinear(HaloFetch(k, ix, iy, iz), HaloFetch(k, ix + 1, iy, iz),
-                   HaloFetch(k, ix, iy + 1, iz), HaloFetch(k, ix + 1, iy + 1, iz),
-                   HaloFetch(k, ix, iy, iz + 1), HaloFetch(k, ix + 1, iy, iz + 1),
-                   HaloFetch(k, ix, iy + 1, iz + 1), HaloFetch(k, ix + 1, iy + 1, iz + 1), fx, fy, fz);
-}
 
 // Whether a lookup at p may read a voxel > 0: the flag of p's block (p clamped into the grid,
 // which keeps the answer conservative: a point just outside reads the border block's voxels).
@@ -287,93 +278,52 @@ inline float HaloSample(const HaloConstants& k, float px, float py, float pz) {
 // exactly +0), so this is empty-space skipping with no effect on the result.
 inline bool BlockOccupied(const HaloConstants& k, float px, float py, float pz) {
   const float top = k.blockResF - 0.5f, q = 1.0f / float(kHaloBlock);
-  auto cell = [&](float p) {
-    float c = p * q;
-    c = c < 0.0f ? 0.0f : c;
-    c = c > top ? top : c;
-    return int(c);
-  };
-  const int n = k.blockRes;
-  return k.blocks[(size_t(cell(pz)) * size_t(n) + size_t(cell(py))) * size_t(n) + size_t(cell(px))] > 0.0f;
-}
-
-// Intersects the ray's interval [tLo, tHi] with the slab lo ≤ a + b·t ≤ hi of one axis. A ray
-// parallel to the slab (b = 0) keeps its interval when inside it and loses it when outside
-// (written with selects, as the SIMD twin must: no division by 0).
-inline void ClipSlab(float a, float b, float lo, float hi, float& tLo, float& tHi) {
-  const bool flat = b == 0.0f;
-  const float bs = flat ? 1.0f : b;
-  const float t0 = (lo - a) / bs, t1 = (hi - a) / bs;
-  const bool order = t0 < t1;
-  const float nearT = order ? t0 : t1, farT = order ? t1 : t0;
-  const bool outside = a < lo || a > hi;
-  const float nearF = flat ? (outside ? kHaloFar : -kHaloFar) : nearT;
-  const float farF = flat ? (outside ? -kHaloFar : kHaloFar) : farT;
-  tLo = nearF > tLo ? nearF : tLo;
-  tHi = farF < tHi ? farF : tHi;
+  const size_t n = size_t(k.blockRes);
+  const size_t x = size_t(HaloBlockCell(px, q, top)), y = size_t(HaloBlockCell(py, q, top)),
+               z = size_t(HaloBlockCell(pz, q, top));
+  return k.blocks[(z * n + y) * n + x] > 0.0f;
 }
 
 // The glow the ray a + b·t crosses between eye-space distances t0 ≤ t1, in glow widths
 // (occupancy × length): the midpoint rule with ⌈length⌉ steps of at most one voxel, the
-// Fig. 7 accumulation, from t1 toward the eye.
-inline float MarchSegment(const HaloConstants& k, float ax, float ay, float az, float bx, float by,
-                          float bz, float speed, float t0, float t1) {
-  const float len = (t1 - t0) * speed;  // voxels, < 2·res·√3 (the ray is clipped to the box)
-  float n = float(int(len));            // ⌈len⌉ without libm
-  n = n < len ? n + 1.0f : n;
-  const float nSafe = n > 0.0f ? n : 1.0f;
-  const float dt = (t1 - t0) / nSafe;
-  const float seg = len / nSafe;
+// Fig. 7 accumulation, from t1 toward the eye. Each lookup is the shared trilinear voxel
+// lookup (ao/shared/prelude.h, the cone tracer's) at scale 1.
+inline float MarchSegment(const HaloConstants& k, const HaloRayAxis* ray, float speed, float t0, float t1) {
+  const HaloSteps steps = HaloMarchSteps(t0, t1, speed);
   float sum = 0.0f;
-  for (int s = 0; float(s) < n; ++s) {
-    const float t = t1 - (float(s) + 0.5f) * dt;
-    const float px = ax + bx * t, py = ay + by * t, pz = az + bz * t;
-    if (BlockOccupied(k, px, py, pz)) sum = sum + HaloSample(k, px, py, pz);
+  for (int s = 0; float(s) < steps.n; ++s) {
+    const float t = HaloStepT(t1, float(s), steps.dt);
+    const float px = HaloRayPoint(ray[0].a, ray[0].b, t), py = HaloRayPoint(ray[1].a, ray[1].b, t),
+                pz = HaloRayPoint(ray[2].a, ray[2].b, t);
+    if (BlockOccupied(k, px, py, pz)) sum = sum + SampleVoxels(k.data, k.res, k.resF, 1.0f, px, py, pz);
   }
-  return (sum * seg) * k.toWidth;
+  return HaloGlow(sum, steps.seg, k.toWidth);
 }
 
-// The halo of one pixel (before the selection's stencil). Eye ray of the pixel centre as a
-// function of the eye-space distance t along −Z (the G-buffer's depth): perspective
-// e = t·(u, v, −1), orthographic e = (u, v, −t); in grid units g = a + b·t.
+// The halo of one pixel (before the selection's stencil): its eye ray in grid units, clipped
+// to the occupied box, marched in two parts split at the visible surface.
 float HaloPixel(const HaloConstants& k, int x, int y, float depth) {
   const float u = PixelToRay(float(x), k.halfWidth, k.pixelScale);
   const float v = PixelToRay(float(y), k.halfHeight, k.pixelScale);
-  float a[3], b[3];
-  for (int r = 0; r < 3; ++r) {
-    const float mu = k.m[3 * r + 0] * u, mv = k.m[3 * r + 1] * v;
-    if (k.ortho) {
-      a[r] = (k.offset[r] + mu) + mv;
-      b[r] = -k.m[3 * r + 2];
-    } else {
-      a[r] = k.offset[r];
-      b[r] = (mu + mv) - k.m[3 * r + 2];
-    }
-  }
+  HaloRayAxis ray[3];
+  for (int r = 0; r < 3; ++r)
+    ray[r] = HaloRayAxisSetup(k.ortho, k.m[3 * r + 0], k.m[3 * r + 1], k.m[3 * r + 2], k.offset[r], u, v);
   // Fig. 7: the ray runs from the back of the (occupied) box to its front, never behind the eye.
-  float tLo = 0.0f, tHi = kHaloFar;
-  for (int r = 0; r < 3; ++r) ClipSlab(a[r], b[r], k.boxLo[r], k.boxHi[r], tLo, tHi);
-  const bool hit = tHi > tLo;
-  tLo = hit ? tLo : 0.0f;  // a miss marches two empty segments: halo 0
-  tHi = hit ? tHi : 0.0f;
-  // Split at the visible surface (background depth +inf: all of the box is in front).
-  float tS = depth < tLo ? tLo : depth;
-  tS = tS > tHi ? tHi : tS;
-  const float speed = std::sqrt((b[0] * b[0] + b[1] * b[1]) + b[2] * b[2]);  // voxels per unit t
-  const float front = MarchSegment(k, a[0], a[1], a[2], b[0], b[1], b[2], speed, tLo, tS);
-  const float behind = MarchSegment(k, a[0], a[1], a[2], b[0], b[1], b[2], speed, tS, tHi);
-  // Accumulated glow → opacity by a/(1 + a): 0 for nothing crossed, rising smoothly and
-  // saturating below 1 (no exp). §6.1 marches only from the surface toward the eye, so a
-  // selection buried in the protein shows only where its glow leaks past an occluder's
-  // silhouette; the issue asks for it to show over the surface that hides it. So the glow
-  // behind the surface counts too, seen through that surface as through a veil that lets a
-  // share `hidden` of it pass ("over": front glow over the veiled back glow). A hidden
-  // selection then reads as a fainter glow than a visible one (a depth cue), the surface
-  // stays readable under it, and where nothing lies behind the surface (a visible selection
-  // on the background) the halo is exactly Fig. 7's.
-  const float hFront = k.strength * (front / (1.0f + front));
-  const float hBehind = k.strength * (behind / (1.0f + behind));
-  return hFront + (1.0f - hFront) * (k.hidden * hBehind);
+  HaloInterval t{0.0f, kHaloFar};
+  for (int r = 0; r < 3; ++r) t = HaloClipSlab(ray[r].a, ray[r].b, k.boxLo[r], k.boxHi[r], t);
+  t = HaloKeepHit(t);
+  const float tS = HaloSplit(depth, t.lo, t.hi);
+  const float speed = HaloRaySpeed(ray[0].b, ray[1].b, ray[2].b);
+  const float front = MarchSegment(k, ray, speed, t.lo, tS);
+  const float behind = MarchSegment(k, ray, speed, tS, t.hi);
+  // §6.1 marches only from the surface toward the eye, so a selection buried in the protein
+  // shows only where its glow leaks past an occluder's silhouette; the issue asks for it to
+  // show over the surface that hides it. So the glow behind the surface counts too, seen
+  // through that surface as through a veil that lets a share `hidden` of it pass ("over":
+  // front glow over the veiled back glow). A hidden selection then reads as a fainter glow
+  // than a visible one (a depth cue), the surface stays readable under it, and where nothing
+  // lies behind the surface (a visible selection on the background) the halo is exactly Fig. 7's.
+  return HaloOpacity(front, behind, k.strength, k.hidden);
 }
 
 }  // namespace
@@ -431,11 +381,12 @@ void CompositeHalos(std::span<const float> halo, int gw, int s, int width, int h
           for (int sx = 0; sx < s; ++sx) h += halo[size_t(y * s + sy) * size_t(gw) + size_t(x * s + sx)];
         h *= inv;
         float* p = rgba.data() + 4 * (size_t(row) * size_t(width) + size_t(x));
-        // "Over" with premultiplied alpha: the halo is a coloured veil of opacity h.
-        p[0] = p[0] * (1.0f - h) + h * color.r;
-        p[1] = p[1] * (1.0f - h) + h * color.g;
-        p[2] = p[2] * (1.0f - h) + h * color.b;
-        p[3] = p[3] * (1.0f - h) + h;
+        // "Over" with premultiplied alpha: the halo is a coloured veil of opacity h
+        // (effects/shared/compositing.inc, as the GL twin gl/shaders/object_halos_composite.frag).
+        p[0] = shared::MixToward(p[0], color.r, h);
+        p[1] = shared::MixToward(p[1], color.g, h);
+        p[2] = shared::MixToward(p[2], color.b, h);
+        p[3] = shared::MixToward(p[3], 1.0f, h);
       }
     }
   });

@@ -75,6 +75,14 @@ float TrailDecrement(double frameDelta, double trail);
 void UpdateHaloVolume(const ao::OccupancyPyramid& selection, const HighlightOptions& options,
                       const raster::BoundingSphere& sceneBounds, HaloVolume& volume);
 
+// The "halo pyramid" pass of either backend (§6.1-6.2): the drawable selected spheres of
+// `scene` into `selection`, their own occupancy pyramid (the options of `grid`, at most 64³: a
+// finer one would be wasted on the halo volume) and `volume` refreshed from it. False when
+// nothing selected is drawable (the volume is then not valid: nothing to march).
+bool RefreshHaloVolume(const raster::PrimitiveScene& scene, const HighlightOptions& options,
+                       ao::PyramidOptions grid, raster::PrimitiveScene& selection,
+                       ao::OccupancyPyramid& pyramid, HaloVolume& volume);
+
 // One halo opacity per G-buffer sample (index y·width + x) into `halo`: the march of Fig. 7
 // in front of the sample's depth, composited over `hidden` × the march behind it; 0 on
 // samples whose primitive is a selected sphere. `camera` is the G-buffer's.

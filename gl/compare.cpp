@@ -246,6 +246,9 @@ BackendReport CompareBackends(FrameRenderer& renderer, const raster::PrimitiveSc
   if (options.outlines)
     r.buffers.push_back(CompareSamplePlane("outline", cpuResources.outline, renderer.Plane(effects::kBufOutline),
                                            cpu.width, cpu.height));
+  if (!cpuResources.halo.empty() || !renderer.ObjectHalo().empty())  // the "halos" pass had a volume to march
+    r.buffers.push_back(CompareSamplePlane("object halo", cpuResources.halo, renderer.ObjectHalo(), cpu.width,
+                                           cpu.height));
   if (options.color) {
     r.buffers.push_back(CompareColorUlp(r.cpu.rgba, r.gl.rgba, r.cpu.width, r.cpu.height));
     r.buffers.push_back(CompareColor8(r.cpu.rgba, r.gl.rgba, r.cpu.width, r.cpu.height));

@@ -2,7 +2,8 @@
 // GL mirror, compares every buffer (gl/compare.h), prints the report, optionally writes one
 // image per buffer of where the two differ (red on dark grey), and times both.
 //   softmol_gl_compare MOLECULE [--size 640x480] [--style spacefill|balls|licorice|ellipsoids]
-//                      [--threads N] [--repeat N] [--diff PREFIX] [pass options: --ssaa N,
+//                      [--threads N] [--repeat N] [--diff PREFIX] [--highlight SELECTION]
+//                      [pass options: --ssaa N,
 //                      --shadows, --ao cone, --outlines, ... as `softmol render` takes them]
 // Set LP_NUM_THREADS=N as well to give llvmpipe the same thread count as the CPU backend.
 #include <algorithm>
@@ -25,6 +26,7 @@
 #include "gl/frame_renderer.h"
 #include "io/bonds.h"
 #include "io/image_io.h"
+#include "io/selection.h"
 #include "io/structure_reader.h"
 #include "raster/camera.h"
 #include "raster/representation.h"
@@ -34,7 +36,7 @@ namespace {
 using namespace softmol;
 
 struct Args {
-  std::string molecule, style = "spacefill", diffPrefix;
+  std::string molecule, style = "spacefill", diffPrefix, highlight;
   int width = 640, height = 480, threads = 0, repeat = 0;
   effects::RenderOptions options;  // every pass option, as `softmol render` takes it
 };
@@ -42,7 +44,7 @@ struct Args {
 [[noreturn]] void Usage(const char* why) {
   std::fprintf(stderr,
                "softmol_gl_compare: %s\nusage: softmol_gl_compare MOLECULE [--size WxH] [--style S] "
-               "[--threads N] [--repeat N] [--diff PREFIX] [any pass option of softmol render: --ssaa N, "
+               "[--threads N] [--repeat N] [--diff PREFIX] [--highlight SELECTION] [any pass option of softmol render: --ssaa N, "
                "--shadows, --ao cone, ...]\n",
                why);
   std::exit(2);
@@ -86,6 +88,7 @@ Args Parse(int argc, char** argv) {
     else if (s == "--threads") a.threads = std::atoi(value().c_str());
     else if (s == "--repeat") a.repeat = std::atoi(value().c_str());
     else if (s == "--diff") a.diffPrefix = value();
+    else if (s == "--highlight") a.highlight = value();
     else if (s.size() > 2 && s[0] == '-' && s[1] == '-') SetPassOption(a, s.substr(2), argc, argv, i);
     else if (!s.empty() && s[0] == '-') Usage(("unknown option " + s).c_str());
     else a.molecule = s;
@@ -149,6 +152,9 @@ int main(int argc, char** argv) {
     const raster::PrimitiveScene scene = raster::BuildRepresentation(mol, rep);
     const raster::Camera camera = raster::DefaultCamera(scene, a.width, a.height);
     effects::RenderOptions options = a.options;
+    // As `softmol render --highlight`: one flag per atom, which is one sphere per atom in the
+    // per-atom styles.
+    if (!a.highlight.empty()) options.highlight.spheres = io::Evaluate(io::ParseSelection(a.highlight), mol);
     if (options.ao != effects::AoMode::kNone) options.shading = effects::AoShading();
     for (const effects::PlannedPass& p : effects::PlanPasses(options))
       if (!gl::Mirrors(p.id)) throw std::runtime_error(std::string("the pass '") + p.name + "' (" +

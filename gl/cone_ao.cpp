@@ -44,13 +44,8 @@ void ConeAoPass::Run(const GBufferTargets& g, const raster::Camera& camera, cons
   const ao::detail::ConeConstants k = ao::detail::MakeConeConstants(pyramid, camera, options, g.width);
   const GLuint p = program;
   const auto loc = [p](const char* name) { return glGetUniformLocation(p, name); };
-  glProgramUniform1fv(p, loc("uM"), 9, k.m);
-  glProgramUniform1fv(p, loc("uOffset"), 3, k.offset);
+  SetGridRayUniforms(p, k.m, k.offset, k.halfWidth, k.halfHeight, k.pixelScale, k.ortho);
   glProgramUniform1fv(p, loc("uRot"), 9, k.rot);
-  glProgramUniform1f(p, loc("uHalfWidth"), k.halfWidth);
-  glProgramUniform1f(p, loc("uHalfHeight"), k.halfHeight);
-  glProgramUniform1f(p, loc("uPixelScale"), k.pixelScale);
-  glProgramUniform1i(p, loc("uOrtho"), k.ortho ? 1 : 0);
   glProgramUniform1i(p, loc("uCones"), k.cones);
   glProgramUniform1i(p, loc("uSamples"), k.samples);
   glProgramUniform1f(p, loc("uConeCount"), k.coneCount);

@@ -21,14 +21,21 @@ struct FrameRenderer::Impl {
   detail::ConeAoPass coneAo;
   detail::BakedAoPass bakedAo;
   detail::DepthHalosPass depthHalos;
+  detail::ObjectHalosPass objectHalos;
   ao::AoAtlas atlas;  // baked on the CPU (the bake is not mirrored), uploaded when re-baked
   uint64_t atlasKey = 0;
   bool atlasBaked = false;
   ao::OccupancyPyramid pyramid;  // built on the CPU (the same pass as the CPU backend's), uploaded
+  // The object-space halos' selection, its pyramid and the halo volume, built on the CPU by the
+  // CPU's own function and uploaded; the volume is kept across frames (a trail decays it).
+  raster::PrimitiveScene haloScene;
+  ao::OccupancyPyramid haloPyramid;
+  effects::HaloVolume haloVolume;
+  bool haloReady = false;
   detail::GBufferTargets gbuffer;
   // Per-sample results read back, for the shading pass (which uploads its inputs) and for the
   // comparison.
-  std::vector<float> outline, shadow, ao, depthHalo;
+  std::vector<float> outline, shadow, ao, depthHalo, objectHalo;
   raster::GBuffer samples;  // read-back scratch for the AOVs
 };
 
@@ -74,6 +81,7 @@ FrameRenderer::FrameRenderer() : impl_(std::make_unique<Impl>()) {
   impl_->coneAo.Create();
   impl_->bakedAo.Create();
   impl_->depthHalos.Create();
+  impl_->objectHalos.Create();
 }
 
 FrameRenderer::~FrameRenderer() {
@@ -84,6 +92,7 @@ FrameRenderer::~FrameRenderer() {
   impl_->coneAo.Release();
   impl_->bakedAo.Release();
   impl_->depthHalos.Release();
+  impl_->objectHalos.Release();
   impl_->gbuffer.Release();
 }
 
@@ -174,6 +183,24 @@ void GlShading(GlPassContext& c) {
   c.m.shading.Run(c.m.gbuffer, o.ssaa, o.shading, effects::Backdrop{o.background, o.transparent}, &inputs);
 }
 
+// §6.1-6.2: the CPU's own halo-volume refresh (effects::RefreshHaloVolume, the same function
+// the CPU's "halo pyramid" pass runs, so a trail decays frame to frame by the same
+// recurrence), uploaded.
+void GlHaloPyramid(GlPassContext& c) {
+  FrameRenderer::Impl& m = c.m;
+  m.haloReady = effects::RefreshHaloVolume(c.scene, c.o.highlight, c.o.pyramid, m.haloScene, m.haloPyramid,
+                                           m.haloVolume);
+  if (m.haloReady) m.objectHalos.Upload(m.haloVolume, c.o.highlight.spheres);
+}
+
+// The march of every sample in GLSL, then its composite over the shaded pixels.
+void GlObjectHalos(GlPassContext& c) {
+  FrameRenderer::Impl& m = c.m;
+  if (!m.haloReady) return;
+  m.objectHalos.Run(m.gbuffer, c.cam, m.haloVolume, c.o.highlight, m.objectHalo);
+  m.objectHalos.Composite(m.shading, c.o.ssaa, c.o.highlight.color);
+}
+
 void GlAovs(GlPassContext&) {}  // taken from the read-back that ends every frame
 
 // The GL twin of each registered pass unit, by PassId (effects/pass_list.h); null: not mirrored.
@@ -190,8 +217,8 @@ constexpr GlPassFn kGlPasses[] = {
     GlOutlines,    // kOutlines
     GlDepthHalos,  // kDepthHalos
     GlShading,     // kShading
-    nullptr,       // kHaloPyramid
-    nullptr,       // kObjectHalos
+    GlHaloPyramid,  // kHaloPyramid
+    GlObjectHalos,  // kObjectHalos
     GlAovs,        // kAovs
 };
 static_assert(std::size(kGlPasses) == size_t(effects::PassId::kCount), "one entry per PassId");
@@ -212,6 +239,7 @@ GlFrameStats FrameRenderer::RenderFrame(const raster::PrimitiveScene& scene,
   cam.height = camera.height * o.ssaa;
   f.passes.clear();
   impl_->ao.clear();  // no AO pass this frame: the AOV and the shading see none
+  impl_->objectHalo.clear();
   f.width = camera.width;
   f.height = camera.height;
   GlFrameStats s;
@@ -251,6 +279,8 @@ const std::vector<float>& FrameRenderer::Plane(effects::FrameBuffer buffer) cons
     default: return none;
   }
 }
+
+const std::vector<float>& FrameRenderer::ObjectHalo() const { return impl_->objectHalo; }
 
 // Read-back: colour, then the sample G-buffer when AOVs or the caller want it.
 void FrameRenderer::ReadBackFrame(const effects::RenderOptions& o, uint32_t channels, effects::RenderedFrame& f,

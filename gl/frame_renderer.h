@@ -6,7 +6,8 @@
 // CPU runs (effects::PlanPasses). Mirrored passes: G-buffer (depth, normal, base colour,
 // primitive id, surface coordinates, contour lines, caps), the baked-AO lookup (the atlas baked
 // on the CPU, uploaded), the occupancy pyramid (built on the CPU, uploaded) and cone AO, the shadow map and PCF, Sobel outlines, shading (with the depth
-// cue) and the AOVs.
+// cue), the object-space and temporal halos around a selection (the halo volume built on the
+// CPU, uploaded; the march and the composite in GLSL) and the AOVs.
 // Needs a current gl::Context (gl/context_egl.h) on the calling thread.
 #pragma once
 
@@ -57,6 +58,10 @@ class FrameRenderer {
   // One float plane the last frame's plan wrote, row 0 at the bottom: kBufOutline, kBufShadow,
   // kBufAo (one per G-buffer sample), kBufShadowMap (the light's depth); empty for any other.
   const std::vector<float>& Plane(effects::FrameBuffer buffer) const;
+  // The last frame's object-space halo opacity per G-buffer sample (before it is composited;
+  // the "halos" pass writes no buffer of the pass list but the colour), row 0 at the bottom;
+  // empty when that pass did not run or had nothing to march.
+  const std::vector<float>& ObjectHalo() const;
 
   struct Impl;
 

@@ -25,6 +25,7 @@
   X(glClearTexImage) \
   X(glColorMask) \
   X(glCompileShader) \
+  X(glCopyImageSubData) \
   X(glCreateBuffers) \
   X(glCreateFramebuffers) \
   X(glCreateProgram) \

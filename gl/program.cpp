@@ -161,6 +161,16 @@ void PlaneTarget::ReadBack(std::vector<float>& plane) const {
   glGetTextureImage(texture, 0, GL_RED, GL_FLOAT, GLsizei(plane.size() * sizeof(float)), plane.data());
 }
 
+void SetGridRayUniforms(uint32_t p, const float* m, const float* offset, float halfWidth, float halfHeight,
+                        float pixelScale, bool ortho) {
+  glProgramUniform1fv(p, glGetUniformLocation(p, "uM"), 9, m);
+  glProgramUniform1fv(p, glGetUniformLocation(p, "uOffset"), 3, offset);
+  glProgramUniform1f(p, glGetUniformLocation(p, "uHalfWidth"), halfWidth);
+  glProgramUniform1f(p, glGetUniformLocation(p, "uHalfHeight"), halfHeight);
+  glProgramUniform1f(p, glGetUniformLocation(p, "uPixelScale"), pixelScale);
+  glProgramUniform1i(p, glGetUniformLocation(p, "uOrtho"), ortho ? 1 : 0);
+}
+
 }  // namespace detail
 
 }  // namespace softmol::gl

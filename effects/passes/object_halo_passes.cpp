@@ -13,17 +13,8 @@ namespace {
 // halo volume; with a trail (§6.2) the volume decays instead of being rebuilt.
 void RunHaloPyramid(FrameContext& c) {
   FrameResources& r = c.res;
-  SelectSpheres(c.scene, c.options.highlight.spheres, r.haloScene);
-  if (r.haloScene.spheres.size() == 0) {
-    r.haloVolume.valid = false;  // nothing selected is drawable: nothing to march
-  } else {
-    // The halo volume is at most 64³ (object_halos.h): a finer pyramid would be wasted.
-    ao::PyramidOptions grid = c.options.pyramid;
-    grid.resolution = std::min(grid.resolution, 64);
-    ao::UpdateOccupancyPyramid(r.haloScene, grid, r.haloPyramid);
-    UpdateHaloVolume(r.haloPyramid, c.options.highlight, c.scene.Bounds(), r.haloVolume);
-  }
-  c.haloReady = r.haloVolume.valid;
+  c.haloReady = RefreshHaloVolume(c.scene, c.options.highlight, c.options.pyramid, r.haloScene, r.haloPyramid,
+                                  r.haloVolume);
 }
 
 // The halo of every G-buffer sample, composited over the resolved pixels with the resolve's

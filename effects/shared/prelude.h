@@ -15,5 +15,6 @@ using std::sqrt;
 #include "effects/shared/shadow_pcf.inc"
 #include "effects/shared/sobel.inc"
 #include "effects/shared/depth_halo.inc"
+#include "effects/shared/object_halo.inc"
 // clang-format on
 }  // namespace softmol::effects::shared

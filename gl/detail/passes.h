@@ -2,16 +2,18 @@
 // same stem: gl/tile_kernel.cpp (↔ raster/tile_kernel*.cpp), gl/shading.cpp (↔ effects/shading.cpp),
 // gl/outlines.cpp (↔ effects/outlines.cpp), gl/shadows.cpp (↔ effects/shadows.cpp),
 // gl/cone_ao.cpp (↔ ao/cone_trace.cpp), gl/baked_ao.cpp (↔ the lookup of ao/shadow_bake.cpp),
-// gl/depth_halos.cpp (↔ effects/depth_halos.cpp).
+// gl/depth_halos.cpp (↔ effects/depth_halos.cpp), gl/object_halos.cpp (↔ effects/object_halos.cpp).
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "ao/cone_trace.h"
 #include "ao/occupancy_pyramid.h"
 #include "ao/patch_atlas.h"
 #include "effects/depth_halos.h"
+#include "effects/object_halos.h"
 #include "effects/outlines.h"
 #include "effects/shading.h"
 #include "effects/shadows.h"
@@ -37,6 +39,12 @@ struct PlaneTarget {
 
 // A fullscreen program on gl/shaders/fullscreen.vert with the shared formulas and `fragmentPath`.
 uint32_t BuildFullscreenProgram(const char* fragmentPath);
+
+// The uniforms of the passes that march a grid from each pixel (cone AO, object halos): the
+// eye → grid map g = offset + m·e (uM[9], uOffset[3]) and the pixel rays (uHalfWidth,
+// uHalfHeight, uPixelScale, uOrtho), as the CPU's per-frame constants hold them.
+void SetGridRayUniforms(uint32_t program, const float* m, const float* offset, float halfWidth, float halfHeight,
+                        float pixelScale, bool ortho);
 
 struct GBufferTargets {
   int width = 0, height = 0;
@@ -157,6 +165,29 @@ struct DepthHalosPass {
   void Run(const raster::PrimitiveScene& scene, const raster::Camera& view, const GBufferTargets& g,
            const effects::DepthHaloOptions& options, std::vector<float>& halo);
   void Skip(const GBufferTargets& g, std::vector<float>& halo);  // no disc can be drawn
+};
+
+// Object-space and temporal halos (↔ effects/object_halos.cpp): the CPU's halo volume, its
+// empty-space flags and the selection mask uploaded as storage buffers, one R32F opacity per
+// G-buffer sample, then composited over the shading pass's resolved pixels.
+struct ObjectHalosPass {
+  uint32_t program = 0, composite = 0;
+  uint32_t buffers[3] = {};  // volume, block flags, selection mask (one uint per sphere)
+  uint32_t selectedCount = 0;
+  uint32_t colorFbo = 0, colorTarget = 0;  // the composite's RGBA32F output
+  int colorWidth = 0, colorHeight = 0;
+  PlaneTarget target;
+  void Create();
+  void Release();
+  // `volume` must be valid (effects::RefreshHaloVolume returned true); `selected` is
+  // HighlightOptions::spheres.
+  void Upload(const effects::HaloVolume& volume, std::span<const uint8_t> selected);
+  // The halo of every sample of `g` (seen by `camera`) through the uploaded volume, read back
+  // into `halo` (G-buffer order).
+  void Run(const GBufferTargets& g, const raster::Camera& camera, const effects::HaloVolume& volume,
+           const effects::HighlightOptions& options, std::vector<float>& halo);
+  // The last Run's halo over `shading`'s resolved pixels, written back into its target.
+  void Composite(ShadingPass& shading, int ssaa, glm::vec3 color);
 };
 
 }  // namespace softmol::gl::detail

@@ -37,19 +37,15 @@ float Fetch(int level, int x, int y, int z) {
     return inside ? uOccupancy[uLevelStart[level] + (z * res + y) * res + x] : 0.0f;
 }
 
+// The shared voxel lookup (ao/shared/cone_step.inc LocateVoxel + Trilinear) at one level.
 float SampleLevel(int level, float px, float py, float pz) {
-    float cx = CellCoord(px, uScale[level], uResF[level]);
-    float cy = CellCoord(py, uScale[level], uResF[level]);
-    float cz = CellCoord(pz, uScale[level], uResF[level]);
-    int ix = CellFloor(cx), iy = CellFloor(cy), iz = CellFloor(cz);
-    precise float fx = cx - float(ix);
-    precise float fy = cy - float(iy);
-    precise float fz = cz - float(iz);
-    precise float v = Trilinear(Fetch(level, ix, iy, iz), Fetch(level, ix + 1, iy, iz),
-                                Fetch(level, ix, iy + 1, iz), Fetch(level, ix + 1, iy + 1, iz),
-                                Fetch(level, ix, iy, iz + 1), Fetch(level, ix + 1, iy, iz + 1),
-                                Fetch(level, ix, iy + 1, iz + 1), Fetch(level, ix + 1, iy + 1, iz + 1),
-                                fx, fy, fz);
+    VoxelCell c = LocateVoxel(px, py, pz, uScale[level], uResF[level]);
+    int x = c.ix, y = c.iy, z = c.iz;
+    precise float v = Trilinear(Fetch(level, x, y, z), Fetch(level, x + 1, y, z),
+                                Fetch(level, x, y + 1, z), Fetch(level, x + 1, y + 1, z),
+                                Fetch(level, x, y, z + 1), Fetch(level, x + 1, y, z + 1),
+                                Fetch(level, x, y + 1, z + 1), Fetch(level, x + 1, y + 1, z + 1),
+                                c.fx, c.fy, c.fz);
     return v;
 }
 

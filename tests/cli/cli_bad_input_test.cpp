@@ -74,7 +74,6 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"highlight_matches_nothing", "render '" + Data("3sn6.pdb") + "' -o %O --highlight 'resn NOPE'", "--highlight"},
         BadCase{"highlight_bad_syntax", "render " + kPept + " -o %O --highlight 'resi x'", "--highlight"},
         BadCase{"highlight_trail_without_trajectory", "render " + kPept + " -o %O --highlight all --highlight-trail 5", "--highlight-trail"},
-        BadCase{"highlight_on_gl_backend", "render " + kPept + " -o %O --backend gl --highlight all", "--"},
         BadCase{"bad_highlight_color", "render " + kPept + " -o %O --highlight all --highlight-color yellowish", "--highlight-color"},
         BadCase{"negative_contours", "render " + kPept + " -o %O --contours -1", "--contours"},
         BadCase{"bad_contour_color", "render " + kPept + " -o %O --contours --contour-color 12345", "--contour-color"},
@@ -86,9 +85,6 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"depth_cue_above_one", "render " + kPept + " -o %O --depth-cue 1.5", "--depth-cue"},
         BadCase{"odd_ao_directions", "render " + kPept + " -o %O --ao baked --ao-directions 7", "--ao-directions"},
         BadCase{"ao_patch_too_big", "render " + kPept + " -o %O --ao baked --ao-patch 4096 --ao-texture 64", "--ao-"},
-        BadCase{"highlight_trail_on_gl_backend", "render '" + Data("md.pdb") + "' --trajectory '" + Data("md.xtc") +
-                                                     "' --frames 0:0 -o %O --backend gl --highlight ion --highlight-trail 2",
-                "--"},
         BadCase{"info_missing", "info %D/missing.cif", "missing.cif"}),
     [](const testing::TestParamInfo<BadCase>& i) { return std::string(i.param.name); });
 

@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -17,7 +18,8 @@ namespace {
 constexpr double kColorAgreement = 0.999;
 
 // Plain, and with the effects the GL mirror computes from its own G-buffer (contour lines,
-// near-plane caps, depth cue, Sobel outlines, shadows, cone and baked AO, depth halos; il2's default camera is ~84 Å from its centre, so the clip cuts it).
+// near-plane caps, depth cue, Sobel outlines, shadows, cone and baked AO, depth halos, object-space
+// halos around a selection; il2's default camera is ~84 Å from its centre, so the clip cuts it).
 class CliBackend : public testing::TestWithParam<const char*> {};
 
 TEST_P(CliBackend, GlPngMatchesCpuPng) {
@@ -54,7 +56,40 @@ INSTANTIATE_TEST_SUITE_P(Effects, CliBackend,
                                          "--shadows --shadow-map 512 --pcf-samples 32",
                                          "--ao cone --cones 5 --ao-grid 64",
                                          "--ao baked --ao-directions 32 --ao-map 256 --ao-sphere-map cube",
-                                         "--halos --near-clip 86"));
+                                         "--halos --near-clip 86", "--highlight 'resi 30-40'"));
+
+// --highlight on GL (Hermosilla et al. 2015 §6.1-6.2) gives the CPU's PNG bytes: a still frame
+// with a halo around 3sn6's ligand, and a trail across trajectory frames (md.xtc's ion, a
+// trail longer than the run so every frame keeps the wake of the earlier ones).
+void ExpectSameBytes(const std::string& args, const std::string& name, const std::vector<std::string>& files) {
+  const auto dir = softmol::test::ScratchDir(name);
+  for (const char* backend : {"cpu", "gl"}) {
+    const std::string out = (dir / (std::string(backend) + (files.size() > 1 ? "_%03d.png" : ".png"))).string();
+    const softmol::test::CommandResult r =
+        softmol::test::RunSoftmol(args + " -q -o '" + out + "' --backend " + backend, dir);
+    ASSERT_EQ(r.exitCode, 0) << backend << ": " << r.err;
+  }
+  for (const std::string& f : files) {
+    const std::string cpu = softmol::test::Slurp(dir / ("cpu" + f)), gl = softmol::test::Slurp(dir / ("gl" + f));
+    ASSERT_FALSE(cpu.empty()) << f;
+    EXPECT_EQ(cpu, gl) << f << ": the PNGs differ";
+  }
+}
+
+TEST(CliBackendHalos, LigandHaloGivesTheCpuBytes) {
+  SOFTMOL_NEED_GL();
+  ExpectSameBytes(std::string("render '") + SOFTMOL_DATA_DIR +
+                      "/3sn6.pdb' --size 200x150 --rotate 0,180,0 --ssaa 2 --threads 2 --highlight ligand "
+                      "--highlight-color ff0000",
+                  "cli_backend_gl_ligand", {".png"});
+}
+
+TEST(CliBackendHalos, TrailGivesTheCpuBytesOnEveryFrame) {
+  SOFTMOL_NEED_GL();
+  ExpectSameBytes(std::string("render '") + SOFTMOL_DATA_DIR + "/md.pdb' --trajectory '" + SOFTMOL_DATA_DIR +
+                      "/md.xtc' --frames 0:20:10 --highlight ion --highlight-trail 1e6 --size 100x75 --threads 2",
+                  "cli_backend_gl_trail", {"_000.png", "_010.png", "_020.png"});
+}
 
 TEST(CliBackendErrors, UnknownBackendIsAnError) {
   const auto dir = softmol::test::ScratchDir("cli_backend_bad");
