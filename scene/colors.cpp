@@ -17,9 +17,9 @@ using namespace palette;
 constexpr uint8_t kCarbon = 6;
 
 // Okabe & Ito's colour-blind-safe qualitative palette without its black, ordered so that
-// neighbouring chains contrast.
-constexpr std::array<uint32_t, 7> kChainPalette = {0x56B4E9, 0xE69F00, 0x009E73, 0xF0E442,
-                                                   0x0072B2, 0xD55E00, 0xCC79A7};
+// neighbouring chains contrast (the loud yellow last).
+constexpr std::array<uint32_t, 7> kChainPalette = {0x56B4E9, 0xE69F00, 0x009E73, 0xD55E00,
+                                                   0x0072B2, 0xCC79A7, 0xF0E442};
 
 
 uint32_t Mix(uint32_t rgb, uint32_t toward, double t) {
@@ -188,7 +188,8 @@ void ApplyColorRule(const io::Molecule& mol, const ColorRule& rule, const std::v
         if (nucleic[i]) colors[i] = kNucleic;
         else if (const uint32_t c = AminoAcidClass(ResidueName(residue))) colors[i] = c;
         break;
-      case ColorScheme::kSecondaryStructure:
+      case ColorScheme::kSecondaryStructure:  // polymers only: a ligand has no secondary structure
+        if (!(mol.flags[i] & io::kPolymer)) break;
         colors[i] = residue.ss == io::SecondaryStructure::kHelix   ? kHelix
                     : residue.ss == io::SecondaryStructure::kSheet ? kSheet
                                                                    : kCoil;

@@ -9,7 +9,7 @@
 //                     shades for more than seven chains
 //   residue           hydrophobic / polar / acidic / basic amino acids and nucleotides (other
 //                     residues keep the colour they had)
-//   ss                secondary structure: helix, sheet, coil (io::Residue::ss)
+//   ss                secondary structure of polymer residues: helix, sheet, coil (io::Residue::ss)
 //   bfactor[:LO:HI]   viridis over the B-factors, LO..HI or the selected atoms' range
 //   uniform:COLOR, COLOR   one colour (hex or a CSS name)
 //   SEL=SCHEME|COLOR  any of the above over a selection only ("ligand=orange", "chain B=ss")
