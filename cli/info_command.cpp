@@ -95,7 +95,7 @@ int RunInfo(const InfoArgs& a) {
     for (uint8_t h : hits) count += h;
     loaded.steps.push_back(
         {"selection", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count()});
-    if (count == 0) throw io::InputError({"--select"}, "selection '" + a.select + "' matches no atoms");
+    // 0 is an answer (the selection is valid; this molecule has none of it), not an error.
     j["selection"] = {{"text", a.select}, {"atoms", count}};
   }
   nlohmann::ordered_json steps = nlohmann::ordered_json::object();

@@ -8,6 +8,7 @@
 #include <exception>
 #include <new>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -32,6 +33,22 @@ std::string VersionText() {
   return s + "\nSIMD target in use: " + raster::ActiveSimdTarget();
 }
 
+// A command line CLI11 rejects, as one line like every other softmol error: the option first,
+// then what is wrong with it.
+std::string ParseErrorMessage(const CLI::App& app, const CLI::ParseError& e) {
+  if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
+    std::vector<std::string> extra = app.remaining(/*recurse=*/true);
+    for (const CLI::App* sub : app.get_subcommands())
+      for (const std::string& r : sub->remaining()) extra.push_back(r);
+    const std::string first = extra.empty() ? "?" : extra.front();
+    std::string help = "softmol --help";
+    for (const CLI::App* sub : app.get_subcommands()) help = "softmol " + sub->get_name() + " --help";
+    if (!first.empty() && first[0] == '-') return first + ": unknown option (see " + help + ")";
+    return "'" + first + "': unexpected argument (quote a value that holds spaces; see " + help + ")";
+  }
+  return e.what();
+}
+
 int Run(CLI::App& app, int argc, char** argv, cli::InfoArgs& info, cli::RenderCommand& render,
         cli::BakeCommand& bake) {
   if (const char* env = std::getenv("SOFTMOL_SIMD"); env && *env)
@@ -39,8 +56,9 @@ int Run(CLI::App& app, int argc, char** argv, cli::InfoArgs& info, cli::RenderCo
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    // CLI11 prints the message naming the option; only --help/--version exit 0.
-    return app.exit(e) == 0 ? io::kExitOk : io::kExitBadInput;
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    std::fprintf(stderr, "softmol: %s\n", ParseErrorMessage(app, e).c_str());
+    return io::kExitBadInput;
   }
   if (app.got_subcommand("info")) return cli::RunInfo(info);
   if (app.got_subcommand("render")) return cli::RunRender(render.Args());
