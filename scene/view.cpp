@@ -79,7 +79,12 @@ View ViewOfPyMol(const std::vector<double>& v) {
   return view;
 }
 
+bool Bounded(glm::dvec3 v) { return std::abs(v.x) <= 1e9 && std::abs(v.y) <= 1e9 && std::abs(v.z) <= 1e9; }
+
 void CheckCamera(const View& v, const io::SourceLocation& where) {
+  // (The PyMOL form computes eye and target: they may overflow what the key=value form allows.)
+  if (!Bounded(v.eye) || !Bounded(v.target) || !Bounded(v.up) || !(v.farPlane <= 1e9) || !(v.orthoHeight <= 1e9))
+    throw io::InputError(where, "the camera is beyond ±1e9 Å");
   const glm::dvec3 f = v.target - v.eye, side = glm::cross(f, v.up);
   if (glm::dot(f, f) == 0.0 || glm::dot(side, side) == 0.0)
     throw io::InputError(where, "eye and target coincide, or up is parallel to the view direction");

@@ -113,6 +113,28 @@ TEST(ColorSchemes, ChainResidueBfactorAndSelectionsColourTheirAtoms) {
   }
 }
 
+TEST(ColorSchemes, SecondaryStructureAndElementCarbons) {
+  const io::Molecule& m = Tii();  // HELIX/SHEET records (io/secondary_structure.h)
+  const std::vector<uint32_t> ss = AtomColors(m, {ParseColorRule("ss", {"t"})});
+  const std::vector<uint32_t> green = AtomColors(m, {ParseColorRule("element:green", {"t"})});
+  const std::vector<uint32_t> base = AtomColors(m, {});
+  size_t helix = 0, sheet = 0;
+  for (size_t i = 0; i < m.atomCount(); ++i) {
+    const io::SecondaryStructure k = m.residues[m.residueIndex[i]].ss;
+    if (!(m.flags[i] & io::kPolymer)) {
+      EXPECT_EQ(ss[i], base[i]) << "no secondary structure outside polymers";
+    } else {
+      EXPECT_EQ(ss[i], k == io::SecondaryStructure::kHelix   ? palette::kHelix
+                       : k == io::SecondaryStructure::kSheet ? palette::kSheet
+                                                             : palette::kCoil);
+      helix += k == io::SecondaryStructure::kHelix, sheet += k == io::SecondaryStructure::kSheet;
+    }
+    EXPECT_EQ(green[i], m.element[i] == 6 ? 0x008000u : m.color[i]);
+  }
+  EXPECT_GT(helix, 500u);
+  EXPECT_GT(sheet, 500u);
+}
+
 TEST(ColorSchemes, ChainPaletteCyclesDistinctly) {
   std::set<uint32_t> first;
   for (size_t k = 0; k < 7; ++k) first.insert(ChainColor(k));
