@@ -363,13 +363,7 @@ int RunRender(const RenderArgs& a) {
   if (ro.highlight.trail > 0 && a.highlight.empty())
     throw io::InputError({"--highlight-trail"}, "--highlight-trail needs --highlight SELECTION");
   std::optional<io::Selection> highlight;
-  if (!a.highlight.empty()) {
-    try {
-      highlight = io::ParseSelection(a.highlight);
-    } catch (const io::InputError& e) {
-      throw io::InputError({"--highlight", 0, e.where().column}, e.message());
-    }
-  }
+  if (!a.highlight.empty()) highlight = io::ParseSelection(a.highlight, {"--highlight"});
   if (int64_t(size.width) * size.height * ro.ssaa * ro.ssaa > (int64_t(1) << 28))
     throw io::InputError({"--ssaa"}, "size × ssaa² is more than 2^28 samples");
   std::unique_ptr<tbb::global_control> threads;

@@ -6,9 +6,8 @@
 #include "io/color_names.h"
 
 namespace softmol::io {
-namespace {
 
-std::string_view Trim(std::string_view s) {
+std::string_view TrimBlanks(std::string_view s) {
   const size_t a = s.find_first_not_of(" \t");
   if (a == std::string_view::npos) return {};
   const size_t b = s.find_last_not_of(" \t");
@@ -16,8 +15,6 @@ std::string_view Trim(std::string_view s) {
 }
 
 std::string Quoted(std::string_view text) { return "'" + std::string(text) + "'"; }
-
-}  // namespace
 
 SourceLocation FlagLocation(std::string_view name) { return SourceLocation("--" + std::string(name)); }
 
@@ -46,7 +43,7 @@ std::string RealRangeHint(RealRange r, std::string_view unit) {
 
 int ParseIntValue(std::string_view text, long long lo, long long hi, std::string_view unit,
                   const SourceLocation& where) {
-  const std::string_view s = Trim(text);
+  const std::string_view s = TrimBlanks(text);
   long long v = 0;
   const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
   if (s.empty() || r.ec != std::errc() || r.ptr != s.data() + s.size())
@@ -56,7 +53,7 @@ int ParseIntValue(std::string_view text, long long lo, long long hi, std::string
 }
 
 double ParseRealValue(std::string_view text, RealRange range, std::string_view unit, const SourceLocation& where) {
-  const std::string_view s = Trim(text);
+  const std::string_view s = TrimBlanks(text);
   double v = 0;
   const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
   if (s.empty() || r.ec != std::errc() || r.ptr != s.data() + s.size() || !std::isfinite(v))
@@ -68,7 +65,7 @@ double ParseRealValue(std::string_view text, RealRange range, std::string_view u
 }
 
 bool ParseBoolValue(std::string_view text, const SourceLocation& where) {
-  const std::string_view s = Trim(text);
+  const std::string_view s = TrimBlanks(text);
   if (s == "true") return true;
   if (s == "false") return false;
   throw InputError(where, "expected true or false, got " + Quoted(text));
@@ -76,14 +73,14 @@ bool ParseBoolValue(std::string_view text, const SourceLocation& where) {
 
 size_t ParseChoiceValue(std::string_view text, const std::vector<std::string>& choices,
                         const SourceLocation& where) {
-  const std::string_view s = Trim(text);
+  const std::string_view s = TrimBlanks(text);
   for (size_t i = 0; i < choices.size(); ++i)
     if (choices[i] == s) return i;
   throw InputError(where, "unknown value " + Quoted(text) + " (" + JoinChoices(choices, ", ") + ")");
 }
 
 std::optional<uint32_t> ColorFromText(std::string_view text) {
-  std::string_view s = Trim(text);
+  std::string_view s = TrimBlanks(text);
   if (const std::optional<uint32_t> named = NamedColor(s)) return named;
   if (!s.empty() && s[0] == '#') s.remove_prefix(1);
   uint32_t v = 0;

@@ -91,6 +91,9 @@ std::optional<uint32_t> ColorFromText(std::string_view text);
 std::string FormatReal(double value);
 std::string FormatReal(float value);  // shortest that reads back as the same float ("0.6")
 std::string JoinChoices(const std::vector<std::string>& choices, std::string_view separator);
+// Text helpers of every value parser: without leading/trailing blanks; in quotes for a message.
+std::string_view TrimBlanks(std::string_view text);
+std::string Quoted(std::string_view text);
 
 // Builders. `field` is a generic captureless lambda returning the member:
 //   IntParam<RenderOptions>("shadow-map", [](auto& o) -> auto& { return o.shadow.mapSize; },

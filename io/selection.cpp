@@ -451,6 +451,16 @@ std::vector<uint8_t> Eval(const Selection& sel, int index, const Molecule& mol) 
 
 Selection ParseSelection(std::string_view text) { return Parser(text).Parse(); }
 
+Selection ParseSelection(std::string_view text, const SourceLocation& where) {
+  try {
+    return ParseSelection(text);
+  } catch (const InputError& e) {
+    SourceLocation at = where;
+    at.column = e.where().column;
+    throw InputError(at, e.message());
+  }
+}
+
 std::vector<uint8_t> Evaluate(const Selection& selection, const Molecule& mol) {
   if (selection.root < 0) return std::vector<uint8_t>(mol.atomCount(), 0);
   return Eval(selection, selection.root, mol);

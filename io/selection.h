@@ -19,6 +19,7 @@
 #include <utility>
 #include <vector>
 
+#include "io/error.h"
 #include "io/molecule.h"
 
 namespace softmol::io {
@@ -44,6 +45,9 @@ struct Selection {
 // Throws InputError with file "selection", line 1 and the column of the offending word, e.g.
 // "selection:1:6: expected a number after 'resi', found 'x'".
 Selection ParseSelection(std::string_view text);
+// The same for a selection given as an option value or scene key: errors name `where` (the
+// flag or the file and key) and the column inside the selection.
+Selection ParseSelection(std::string_view text, const SourceLocation& where);
 
 // 1 for every selected atom, 0 otherwise; atomCount() entries. Parallel (oneTBB), with the
 // same result for any thread count.

@@ -41,14 +41,6 @@ constexpr SchemeName kSchemes[] = {
     {"bfactor", ColorScheme::kBFactor}, {"uniform", ColorScheme::kUniform},
 };
 
-std::string_view Trim(std::string_view s) {
-  const size_t a = s.find_first_not_of(" \t");
-  if (a == std::string_view::npos) return {};
-  return s.substr(a, s.find_last_not_of(" \t") - a + 1);
-}
-
-std::string Quoted(std::string_view s) { return "'" + std::string(s) + "'"; }
-
 // "SCHEME[:ARG[:ARG]]" or "COLOR" (no selection part).
 ColorRule ParseScheme(std::string_view text, const io::SourceLocation& where) {
   ColorRule rule;
@@ -57,11 +49,11 @@ ColorRule ParseScheme(std::string_view text, const io::SourceLocation& where) {
     return rule;
   }
   const size_t colon = text.find(':');
-  const std::string_view name = Trim(text.substr(0, colon));
+  const std::string_view name = io::TrimBlanks(text.substr(0, colon));
   const std::string_view arg = colon == std::string_view::npos ? std::string_view() : text.substr(colon + 1);
   const auto it = std::find_if(std::begin(kSchemes), std::end(kSchemes), [&](const SchemeName& s) { return s.name == name; });
   if (it == std::end(kSchemes))
-    throw io::InputError(where, "unknown colour " + Quoted(text) +
+    throw io::InputError(where, "unknown colour " + io::Quoted(text) +
                                     " (a scheme: auto, element[:COLOR], chain, residue, ss, bfactor[:LO:HI], "
                                     "uniform:COLOR; a colour: RRGGBB or a CSS name; or SELECTION=one of these)");
   rule.scheme = it->scheme;
@@ -70,13 +62,13 @@ ColorRule ParseScheme(std::string_view text, const io::SourceLocation& where) {
     rule.rgb = io::ParseColorValue(arg, where), rule.hasRgb = true;
   } else if (rule.scheme == ColorScheme::kBFactor && colon != std::string_view::npos) {
     const size_t second = arg.find(':');
-    if (second == std::string_view::npos) throw io::InputError(where, "expected bfactor:LO:HI, got " + Quoted(text));
+    if (second == std::string_view::npos) throw io::InputError(where, "expected bfactor:LO:HI, got " + io::Quoted(text));
     rule.lo = io::ParseRealValue(arg.substr(0, second), {-1e9, 1e9}, "", where);
     rule.hi = io::ParseRealValue(arg.substr(second + 1), {-1e9, 1e9}, "", where);
-    if (!(rule.hi > rule.lo)) throw io::InputError(where, "bfactor:LO:HI needs LO < HI, got " + Quoted(text));
+    if (!(rule.hi > rule.lo)) throw io::InputError(where, "bfactor:LO:HI needs LO < HI, got " + io::Quoted(text));
     rule.hasRange = true;
   } else if (colon != std::string_view::npos) {
-    throw io::InputError(where, "the scheme '" + std::string(name) + "' takes no argument, got " + Quoted(text));
+    throw io::InputError(where, "the scheme '" + std::string(name) + "' takes no argument, got " + io::Quoted(text));
   }
   return rule;
 }
@@ -139,17 +131,11 @@ uint32_t Viridis(double t) {
 
 ColorRule ParseColorRule(std::string_view text, const io::SourceLocation& where) {
   const size_t eq = text.find('=');
-  if (eq == std::string_view::npos) return ParseScheme(Trim(text), where);
-  const std::string_view selection = Trim(text.substr(0, eq));
-  if (selection.empty()) throw io::InputError(where, "expected SELECTION=COLOR, got " + Quoted(text));
-  ColorRule rule = ParseScheme(Trim(text.substr(eq + 1)), where);
-  try {
-    (void)io::ParseSelection(selection);
-  } catch (const io::InputError& e) {
-    io::SourceLocation at = where;
-    at.column = e.where().column;
-    throw io::InputError(at, e.message());
-  }
+  if (eq == std::string_view::npos) return ParseScheme(io::TrimBlanks(text), where);
+  const std::string_view selection = io::TrimBlanks(text.substr(0, eq));
+  if (selection.empty()) throw io::InputError(where, "expected SELECTION=COLOR, got " + io::Quoted(text));
+  ColorRule rule = ParseScheme(io::TrimBlanks(text.substr(eq + 1)), where);
+  (void)io::ParseSelection(selection, where);
   rule.selection = std::string(selection);
   return rule;
 }

@@ -3,29 +3,11 @@
 
 #include <algorithm>
 
+#include "io/params.h"
 #include "io/selection.h"
 
 namespace softmol::scene {
 namespace {
-
-std::string_view Trim(std::string_view s) {
-  const size_t a = s.find_first_not_of(" \t");
-  if (a == std::string_view::npos) return {};
-  return s.substr(a, s.find_last_not_of(" \t") - a + 1);
-}
-
-std::string Quoted(std::string_view s) { return "'" + std::string(s) + "'"; }
-
-// A selection's syntax, checked where it was given (the column is the selection's own).
-void CheckSelection(std::string_view selection, const io::SourceLocation& where) {
-  try {
-    (void)io::ParseSelection(selection);
-  } catch (const io::InputError& e) {
-    io::SourceLocation at = where;
-    at.column = e.where().column;
-    throw io::InputError(at, e.message());
-  }
-}
 
 std::optional<raster::Style> ParseStyle(std::string_view name, const io::SourceLocation& where) {
   if (name == "hidden") return std::nullopt;
@@ -33,7 +15,7 @@ std::optional<raster::Style> ParseStyle(std::string_view name, const io::SourceL
     if (n == name) return style;
   std::string all;
   for (const auto& [n, style] : StyleNames()) all += n + ", ";
-  throw io::InputError(where, "unknown style " + Quoted(name) + " (" + all + "or hidden)");
+  throw io::InputError(where, "unknown style " + io::Quoted(name) + " (" + all + "or hidden)");
 }
 
 }  // namespace
@@ -57,16 +39,16 @@ std::string StyleName(raster::Style style) {
 Layer ParseLayer(std::string_view text, const io::SourceLocation& where) {
   const size_t eq = text.find('=');
   if (eq == std::string_view::npos)
-    throw io::InputError(where, "expected SELECTION=STYLE (e.g. ligand=balls), got " + Quoted(text));
+    throw io::InputError(where, "expected SELECTION=STYLE (e.g. ligand=balls), got " + io::Quoted(text));
   Layer layer;
-  layer.selection = std::string(Trim(text.substr(0, eq)));
-  if (layer.selection.empty()) throw io::InputError(where, "expected SELECTION=STYLE, got " + Quoted(text));
-  CheckSelection(layer.selection, where);
+  layer.selection = std::string(io::TrimBlanks(text.substr(0, eq)));
+  if (layer.selection.empty()) throw io::InputError(where, "expected SELECTION=STYLE, got " + io::Quoted(text));
+  (void)io::ParseSelection(layer.selection, where);
   std::string_view rest = text.substr(eq + 1);
   const size_t comma = rest.find(',');
-  layer.style = ParseStyle(Trim(rest.substr(0, comma)), where);
+  layer.style = ParseStyle(io::TrimBlanks(rest.substr(0, comma)), where);
   if (comma != std::string_view::npos) {
-    const std::string_view color = Trim(rest.substr(comma + 1));
+    const std::string_view color = io::TrimBlanks(rest.substr(comma + 1));
     if (color.find('=') != std::string_view::npos)
       throw io::InputError(where, "a layer's colour applies to its own selection: give it without SELECTION=");
     layer.color = ParseColorRule(color, where);

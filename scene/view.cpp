@@ -13,8 +13,6 @@
 namespace softmol::scene {
 namespace {
 
-std::string Quoted(std::string_view s) { return "'" + std::string(s) + "'"; }
-
 std::vector<std::string_view> Words(std::string_view text) {
   std::vector<std::string_view> words;
   for (size_t i = 0; i < text.size();) {
@@ -33,11 +31,11 @@ glm::dvec3 ParseVector(std::string_view key, std::string_view text, const io::So
   for (int k = 0; k < 3; ++k) {
     const size_t comma = k < 2 ? text.find(',', start) : text.size();
     if (comma == std::string_view::npos)
-      throw io::InputError(where, std::string(key) + " needs X,Y,Z, got " + Quoted(text));
+      throw io::InputError(where, std::string(key) + " needs X,Y,Z, got " + io::Quoted(text));
     v[k] = io::ParseRealValue(text.substr(start, comma - start), {-1e9, 1e9}, "Å", where);
     start = comma + 1;
   }
-  if (start <= text.size()) throw io::InputError(where, std::string(key) + " needs X,Y,Z, got " + Quoted(text));
+  if (start <= text.size()) throw io::InputError(where, std::string(key) + " needs X,Y,Z, got " + io::Quoted(text));
   return v;
 }
 
@@ -116,7 +114,7 @@ View ParseView(std::string_view text, const io::SourceLocation& where) {
     else if (key == "far") view.farPlane = io::ParseRealValue(value, {0.0, 1e9}, "Å", where);
     else
       throw io::InputError(where, "expected eye=X,Y,Z target=X,Y,Z up=X,Y,Z [fov=DEG|ortho=HEIGHT] [near=N far=F], "
-                                  "or PyMOL's 18-number get_view; got " + Quoted(word));
+                                  "or PyMOL's 18-number get_view; got " + io::Quoted(word));
   }
   if (!hasEye || !hasTarget) throw io::InputError(where, "a view needs eye=X,Y,Z and target=X,Y,Z");
   CheckCamera(view, where);
