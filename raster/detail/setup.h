@@ -7,6 +7,7 @@
 #include <glm/vec3.hpp>
 #include <vector>
 
+#include "common/binning.h"
 #include "raster/camera.h"
 #include "raster/detail/tile.h"
 #include "raster/frame.h"
@@ -63,18 +64,11 @@ uint64_t SetupPrimitives(const PrimitiveScene& scene, const ViewSetup& view, Set
 // The front-to-back draw order: visible primitives in id order (spheres, cylinders,
 // ellipsoids), stably sorted by their nearest depth quantised to kDepthBuckets levels over
 // [near, far] (ample for ordering). Exact depth ties between primitives are broken by this
-// order, so every backend must draw in it: raster/frame.cpp sorts by it, the GL mirror
-// (gl/tile_kernel.cpp) draws in it.
+// order, so every backend must draw in it: raster/frame.cpp bins from it, the GL mirror
+// (gl/tile_kernel.cpp) draws in it. Fills `order` (one BinEntry per visible primitive);
+// `bins` is scratch. Threads: the current TBB arena; the order is the same for any count.
 inline constexpr uint32_t kDepthBuckets = 4096;
-struct DepthBucketer {
-  float zLo, zScale;
-  uint32_t operator()(float zMin) const {
-    const float q = (zMin - zLo) * zScale;  // zMin ≥ near − 1e-5·near, so q > −1
-    return q < float(kDepthBuckets - 1) ? uint32_t(q > 0.0f ? q : 0.0f) : kDepthBuckets - 1;
-  }
-};
-inline DepthBucketer MakeDepthBucketer(const FrameConstants& fc) {
-  return {fc.nearPlane, float(kDepthBuckets) / (fc.farPlane - fc.nearPlane)};
-}
+void FrontToBackOrder(const SetupOutput& setup, const FrameConstants& fc, Bins& bins,
+                      std::vector<BinEntry>& order);
 
 }  // namespace softmol::raster::detail
