@@ -281,8 +281,8 @@ bool PixelSurface(const raster::Camera& camera, const raster::GBuffer& gbuffer, 
   if (!std::isfinite(depth) || !(depth > 0.0f)) return false;
   if (!gbuffer.primitiveId.empty() && gbuffer.primitiveId[i] == raster::kNoPrimitive) return false;
   const double scale = raster::PixelScale(camera), d = depth;
-  const double u = (x + 0.5 - 0.5 * camera.width) * scale;
-  const double v = (y + 0.5 - 0.5 * camera.height) * scale;
+  const double u = raster::PixelToRay(x, 0.5 * camera.width, scale);
+  const double v = raster::PixelToRay(y, 0.5 * camera.height, scale);
   const dvec3 eyePos = camera.orthographic ? dvec3(u, v, -d) : dvec3(u * d, v * d, -d);
   const glm::dmat4 inv = glm::inverse(raster::ViewMatrix(camera));
   position = dvec3(inv * glm::dvec4(eyePos, 1.0));
