@@ -72,8 +72,9 @@ inline size_t PrefixBins(size_t chunks, size_t buckets, Bins& bins) {
 
 // Bins items 0 … items−1 into `buckets` buckets. visit(i, f) calls f(bucket) once for every
 // bucket item i goes to (any number of them, each < buckets; it must name the same buckets
-// both times it is called); payload(i) is what is stored. `out` is resized to the total and
-// filled; bins.start gets the offsets. visit and payload run concurrently on different items.
+// both times it is called); payload(i) is what is stored, evaluated once per item (also for an
+// item in no bucket). `out` is resized to the total and filled; bins.start gets the offsets.
+// visit and payload run concurrently on different items.
 template <class T, class Visit, class Payload>
 void BinItems(size_t items, size_t buckets, const Visit& visit, const Payload& payload,
               Bins& bins, std::vector<T>& out) {
@@ -89,7 +90,10 @@ void BinItems(size_t items, size_t buckets, const Visit& visit, const Payload& p
   tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
     uint32_t* at = bins.cursor.data() + c * buckets;
     detail::ForChunkItems(c, chunks, items, [&](size_t i) {
-      visit(i, [&](size_t b) { out[at[b]++] = payload(i); });
+      // One copy per item, in a local: re-reading the source after each store (which the
+      // compiler must assume may alias it) made the tile binning ~10% slower.
+      const T value = payload(i);
+      visit(i, [&](size_t b) { out[at[b]++] = value; });
     });
   });
 }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "common/binning.h"
 #include "common/check.h"
 #include "gl/detail/passes.h"
 #include "gl/gl_api.h"
@@ -105,8 +106,9 @@ size_t TileKernelPass::Prepare(const raster::PrimitiveScene& scene, const raster
   // The CPU's draw order (raster/detail/setup.h FrontToBackOrder): exact depth ties between
   // primitives are broken by it on both backends (tests/gl exact_ties checks it).
   std::vector<BinEntry> sorted;
+  std::vector<uint32_t> buckets;
   Bins bins;
-  FrontToBackOrder(setup, fc, bins, sorted);
+  FrontToBackOrder(setup, fc, bins, buckets, sorted);
   order.resize(sorted.size());
   for (size_t i = 0; i < sorted.size(); ++i) order[i] = sorted[i].code;
   return order.size();

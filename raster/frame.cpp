@@ -29,6 +29,7 @@ namespace softmol::raster {
 struct FrameWorkspace::Impl {
   detail::SetupOutput setup;
   Bins depthBins, tileBins;               // offsets (tileBins.start: each tile's list) + scratch
+  std::vector<uint32_t> depthBucket;      // scratch of FrontToBackOrder
   std::vector<detail::BinEntry> sorted;   // visible primitives, front to back
   std::vector<detail::BinEntry> entries;  // tile lists, concatenated
   std::vector<detail::TileCounters> tileCounters;
@@ -57,11 +58,15 @@ struct DepthBucketer {
 struct TileCover {
   int tileShift;  // log2 of the tile size (a power of two)
   size_t tilesX;
+  // The bounds are read into locals first: f stores 32-bit values, which the compiler must
+  // assume may alias b and tileShift, and would otherwise re-read them on every tile.
   template <class F>
   void operator()(const detail::BinEntry& b, F&& f) const {
-    const int tx0 = b.x0 >> tileShift, tx1 = b.x1 >> tileShift;
-    for (int ty = b.y0 >> tileShift; ty <= (b.y1 >> tileShift); ++ty)
-      for (int tx = tx0; tx <= tx1; ++tx) f(size_t(ty) * tilesX + size_t(tx));
+    const int shift = tileShift;
+    const size_t w = tilesX;
+    const int tx0 = b.x0 >> shift, tx1 = b.x1 >> shift, ty0 = b.y0 >> shift, ty1 = b.y1 >> shift;
+    for (int ty = ty0; ty <= ty1; ++ty)
+      for (int tx = tx0; tx <= tx1; ++tx) f(size_t(ty) * w + size_t(tx));
   }
 };
 
@@ -148,27 +153,32 @@ bool FiniteNonNegative(float v) { return std::isfinite(v) && v >= 0.0f; }
 namespace detail {
 
 void FrontToBackOrder(const SetupOutput& su, const FrameConstants& fc, Bins& bins,
-                      std::vector<BinEntry>& order) {
+                      std::vector<uint32_t>& buckets, std::vector<BinEntry>& order) {
   const size_t nS = su.sphereKey.size(), nC = su.cylinderKey.size();
   const size_t nAll = nS + nC + su.ellipsoidKey.size();
-  auto key = [&](size_t g) {
-    return g < nS        ? su.sphereKey[g]
-           : g < nS + nC ? su.cylinderKey[g - nS]
-                         : su.ellipsoidKey[g - nS - nC];
+  const DepthBucketer bucket{fc.nearPlane, float(kDepthBuckets) / (fc.farPlane - fc.nearPlane)};
+  // Each primitive's bucket first (kCulledKey: none; a visible key is the bits of its zMin),
+  // one streaming loop per array: the binning then reads one array instead of choosing among
+  // three per primitive twice (that fused form measured 15–25% slower on ball-and-stick).
+  buckets.resize(nAll);
+  auto quantise = [&](const std::vector<uint32_t>& key, size_t base) {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, key.size(), 8192), [&](const auto& r) {
+      for (size_t i = r.begin(); i != r.end(); ++i)
+        buckets[base + i] =
+            key[i] != kCulledKey ? bucket(std::bit_cast<float>(key[i])) : kCulledKey;
+    });
   };
+  quantise(su.sphereKey, 0), quantise(su.cylinderKey, nS), quantise(su.ellipsoidKey, nS + nC);
   auto entry = [&](size_t g) {
     return g < nS        ? su.sphereEntry[g]
            : g < nS + nC ? su.cylinderEntry[g - nS]
                          : su.ellipsoidEntry[g - nS - nC];
   };
-  const DepthBucketer bucket{fc.nearPlane, float(kDepthBuckets) / (fc.farPlane - fc.nearPlane)};
-  // A visible primitive's key is the bits of its zMin, so counting reads only the keys; a
-  // culled one goes to no bucket, so the same pass also drops it.
+  // A culled primitive goes to no bucket, so the same pass also drops it.
   BinItems(
       nAll, kDepthBuckets,
       [&](size_t g, auto&& f) {
-        const uint32_t k = key(g);
-        if (k != kCulledKey) f(bucket(std::bit_cast<float>(k)));
+        if (buckets[g] != kCulledKey) f(buckets[g]);
       },
       entry, bins, order);
 }
@@ -202,7 +212,7 @@ FrameStats RenderGBuffer(const PrimitiveScene& scene, const Camera& camera,
   const auto t1 = Clock::now();
 
   // ---- front-to-back order and binning: each tile's list stays front to back, then by id ----
-  detail::FrontToBackOrder(ws.setup, fc, ws.depthBins, ws.sorted);
+  detail::FrontToBackOrder(ws.setup, fc, ws.depthBins, ws.depthBucket, ws.sorted);
   const int ts = options.tileSize;
   const int tilesX = (camera.width + ts - 1) / ts, tilesY = (camera.height + ts - 1) / ts;
   const size_t nTiles = size_t(tilesX) * size_t(tilesY);

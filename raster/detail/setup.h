@@ -7,11 +7,14 @@
 #include <glm/vec3.hpp>
 #include <vector>
 
-#include "common/binning.h"
 #include "raster/camera.h"
 #include "raster/detail/tile.h"
 #include "raster/frame.h"
 #include "raster/primitives.h"
+
+namespace softmol {
+struct Bins;  // common/binning.h
+}  // namespace softmol
 
 namespace softmol::raster::detail {
 
@@ -66,9 +69,10 @@ uint64_t SetupPrimitives(const PrimitiveScene& scene, const ViewSetup& view, Set
 // [near, far] (ample for ordering). Exact depth ties between primitives are broken by this
 // order, so every backend must draw in it: raster/frame.cpp bins from it, the GL mirror
 // (gl/tile_kernel.cpp) draws in it. Fills `order` (one BinEntry per visible primitive);
-// `bins` is scratch. Threads: the current TBB arena; the order is the same for any count.
+// `bins` and `buckets` are scratch. Threads: the current TBB arena; the order is the same for
+// any count.
 inline constexpr uint32_t kDepthBuckets = 4096;
 void FrontToBackOrder(const SetupOutput& setup, const FrameConstants& fc, Bins& bins,
-                      std::vector<BinEntry>& order);
+                      std::vector<uint32_t>& buckets, std::vector<BinEntry>& order);
 
 }  // namespace softmol::raster::detail
