@@ -31,14 +31,14 @@
 #include <cmath>
 #include <glm/glm.hpp>
 
+#include "common/binning.h"
 #include "common/check.h"
 
 namespace softmol::ao {
 namespace {
 
 constexpr float kSqrt3 = 1.7320508075688772f;
-constexpr int kSlabSlices = 4;   // z slices per task at the finest level
-constexpr int kBinChunks = 64;   // fixed number of element chunks for binning (not threads)
+constexpr int kSlabSlices = 4;  // z slices per task at the finest level
 
 using Element = detail::PyramidElement;
 
@@ -269,30 +269,16 @@ void BuildOccupancyPyramid(const raster::PrimitiveScene& scene, const PyramidOpt
     }
   });
 
-  // Bin elements to slabs: counts per (chunk, slab), prefix in (slab, chunk) order, fill.
+  // Each slab's elements, in index order (common/binning.h).
   const int slabs = res / kSlabSlices;
-  const size_t binChunk = (n + kBinChunks - 1) / kBinChunks;
-  std::vector<uint32_t>& counts = pyr.binStart;
-  counts.assign(size_t(kBinChunks) * size_t(slabs) + 1, 0);
-  auto forChunks = [&](auto&& body) {
-    tbb::parallel_for(0, kBinChunks, [&](int c) {
-      const size_t b = size_t(c) * binChunk, e = std::min(n, b + binChunk);
-      for (size_t i = b; i < e; ++i)
+  BinItems(
+      n, size_t(slabs),
+      [&](size_t i, auto&& f) {
         if (elems[i].z0 <= elems[i].z1)
           for (int s = elems[i].z0 / kSlabSlices; s <= elems[i].z1 / kSlabSlices; ++s)
-            body(c, s, i);
-    });
-  };
-  forChunks([&](int c, int s, size_t) { ++counts[size_t(s) * kBinChunks + size_t(c) + 1]; });
-  for (size_t k = 1; k < counts.size(); ++k) counts[k] += counts[k - 1];
-  std::vector<uint32_t>& binned = pyr.binned;
-  binned.resize(counts.back());
-  {
-    std::vector<uint32_t> cursor(counts.begin(), counts.end() - 1);
-    forChunks([&](int c, int s, size_t i) {
-      binned[cursor[size_t(s) * kBinChunks + size_t(c)]++] = uint32_t(i);
-    });
-  }
+            f(size_t(s));
+      },
+      [](size_t i) { return uint32_t(i); }, pyr.bins, pyr.binned);
 
   float* fine = pyr.levels[0].occupancy.data();
   const size_t slice = size_t(res) * size_t(res);
@@ -300,8 +286,8 @@ void BuildOccupancyPyramid(const raster::PrimitiveScene& scene, const PyramidOpt
     const int zLo = s * kSlabSlices, zHi = zLo + kSlabSlices - 1;
     float* slab = fine + size_t(zLo) * slice;
     std::fill(slab, slab + kSlabSlices * slice, 0.0f);
-    for (uint32_t k = counts[size_t(s) * kBinChunks]; k < counts[size_t(s + 1) * kBinChunks]; ++k) {
-      const Element& e = elems[binned[k]];
+    for (size_t k = pyr.bins.Begin(size_t(s)); k < pyr.bins.Begin(size_t(s) + 1); ++k) {
+      const Element& e = elems[pyr.binned[k]];
       if (e.bond) {
         SplatBond(e, res, zLo, zHi, fine);
       } else {

@@ -10,6 +10,7 @@
 #include <glm/vec3.hpp>
 #include <vector>
 
+#include "common/binning.h"
 #include "raster/primitives.h"
 
 namespace softmol::ao {
@@ -46,7 +47,8 @@ struct OccupancyPyramid {
 
   // Scratch reused from build to build, so a frame loop does not allocate (or page-fault).
   std::vector<detail::PyramidElement> elements;
-  std::vector<uint32_t> binStart, binned;
+  Bins bins;                     // each finest slab's range of `binned`
+  std::vector<uint32_t> binned;  // element indices, slab by slab
 };
 
 // Fills `pyramid` from `scene` (reusing its storage). Threads: the current TBB arena.

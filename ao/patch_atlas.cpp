@@ -106,6 +106,7 @@ OwnedTexel TexelOf(PatchKind kind, int width, int height, int i, int j) {
 [[noreturn]] void BadOption(const std::string& what) {
   throw std::invalid_argument("AO atlas: " + what);
 }
+[[noreturn]] void TooSmall(const std::string& what) { throw AtlasTooSmall("AO atlas: " + what); }
 
 void CopyMirrors(std::vector<float>& texels, int side, const PatchTemplate& tpl,
                  const PatchRect& r) {
@@ -146,11 +147,11 @@ AtlasLayout MakeAtlasLayout(size_t spheres, size_t cylinders, const AtlasOptions
     n = int(std::floor(l.side / std::sqrt(area * double(k > 0 ? k : 1))));
     while (n >= 2 && !fits(n)) --n;
     if (n < 2)
-      BadOption(std::to_string(k) + " patches do not fit a " + std::to_string(l.side) +
-                "² texture");
+      TooSmall(std::to_string(k) + " patches do not fit a " + std::to_string(l.side) +
+               "² texture");
   } else if (!fits(n)) {
-    BadOption("patch size " + std::to_string(n) + ": " + std::to_string(k) +
-              " patches do not fit a " + std::to_string(l.side) + "² texture");
+    TooSmall("patch size " + std::to_string(n) + ": " + std::to_string(k) +
+             " patches do not fit a " + std::to_string(l.side) + "² texture");
   }
   const CellSize c = SphereCell(o.sphereMap, n);
   l.patchSize = n;
@@ -168,7 +169,7 @@ AtlasOptions ChooseAtlas(size_t spheres, size_t cylinders, AtlasOptions o, int m
     o.textureSide = side;
     try {
       if (MakeAtlasLayout(spheres, cylinders, o).patchSize >= kMinAutoPatch || side * 2 > maxSide) return o;
-    } catch (const std::invalid_argument&) {
+    } catch (const AtlasTooSmall&) {
       if (side * 2 > maxSide) throw;  // not even the largest side fits
     }
   }

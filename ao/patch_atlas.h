@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <stdexcept>
 #include <vector>
 
 namespace softmol::ao {
@@ -43,13 +44,20 @@ struct AtlasLayout {
   size_t sphereCount = 0, cylinderCount = 0;
 };
 
-// Throws std::invalid_argument (naming the option) when the patches cannot fit.
+// What MakeAtlasLayout and ChooseAtlas throw when options in range still leave too little room:
+// the patches do not fit the texture. A caller can tell it by type from an option out of range
+// (a plain std::invalid_argument), which is its own bug when it validated its options.
+struct AtlasTooSmall : std::invalid_argument {
+  using std::invalid_argument::invalid_argument;
+};
+
+// Throws std::invalid_argument naming the option out of range, or AtlasTooSmall.
 AtlasLayout MakeAtlasLayout(size_t spheres, size_t cylinders, const AtlasOptions& options);
 // When neither the texture side nor the patch size is given: the smallest power-of-two side
 // from options.textureSide (1024) up to maxSide whose automatic patches are at least
 // kMinAutoPatch texels, else the largest side that fits any patch (maxSide: 16384² floats is
 // 1 GiB, the memory bound; 1.03 M atoms get 8192² with 6-texel patches). Returns the options
-// with textureSide set; throws std::invalid_argument when not even maxSide fits.
+// with textureSide set; throws AtlasTooSmall when not even maxSide fits.
 constexpr int kMinAutoPatch = 4;
 AtlasOptions ChooseAtlas(size_t spheres, size_t cylinders, AtlasOptions options, int maxSide = 16384);
 

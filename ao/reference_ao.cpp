@@ -12,6 +12,9 @@
 #include <glm/gtc/matrix_inverse.hpp>
 #include <limits>
 #include <numbers>
+#include <utility>
+
+#include "common/binning.h"
 
 namespace softmol::ao {
 namespace {
@@ -171,24 +174,20 @@ OcclusionScene::OcclusionScene(const raster::PrimitiveScene& scene)
       c1[size_t(k)] = std::clamp(int((b.second[k] - g.lo[k]) / g.cell[k]), 0, g.res[size_t(k)] - 1);
     }
   };
+  // Each cell's primitives, in primitive order (common/binning.h).
   const size_t cells = size_t(g.res[0]) * size_t(g.res[1]) * size_t(g.res[2]);
-  g.start.assign(cells + 1, 0);
-  std::array<int, 3> c0, c1;
-  for (const auto& b : boxes) {
-    cellRange(b, c0, c1);
-    for (int z = c0[2]; z <= c1[2]; ++z)
-      for (int y = c0[1]; y <= c1[1]; ++y)
-        for (int x = c0[0]; x <= c1[0]; ++x) ++g.start[g.CellIndex(x, y, z) + 1];
-  }
-  for (size_t c = 0; c < cells; ++c) g.start[c + 1] += g.start[c];
-  g.items.resize(g.start[cells]);
-  std::vector<uint32_t> fill(g.start.begin(), g.start.end() - 1);
-  for (size_t i = 0; i < boxes.size(); ++i) {
-    cellRange(boxes[i], c0, c1);
-    for (int z = c0[2]; z <= c1[2]; ++z)
-      for (int y = c0[1]; y <= c1[1]; ++y)
-        for (int x = c0[0]; x <= c1[0]; ++x) g.items[fill[g.CellIndex(x, y, z)]++] = uint32_t(i);
-  }
+  Bins bins;
+  BinItems(
+      boxes.size(), cells,
+      [&](size_t i, auto&& f) {
+        std::array<int, 3> c0, c1;
+        cellRange(boxes[i], c0, c1);
+        for (int z = c0[2]; z <= c1[2]; ++z)
+          for (int y = c0[1]; y <= c1[1]; ++y)
+            for (int x = c0[0]; x <= c1[0]; ++x) f(g.CellIndex(x, y, z));
+      },
+      [](size_t i) { return uint32_t(i); }, bins, g.items);
+  g.start = std::move(bins.start);
 }
 
 OcclusionScene::~OcclusionScene() = default;
@@ -282,8 +281,8 @@ bool PixelSurface(const raster::Camera& camera, const raster::GBuffer& gbuffer, 
   if (!std::isfinite(depth) || !(depth > 0.0f)) return false;
   if (!gbuffer.primitiveId.empty() && gbuffer.primitiveId[i] == raster::kNoPrimitive) return false;
   const double scale = raster::PixelScale(camera), d = depth;
-  const double u = (x + 0.5 - 0.5 * camera.width) * scale;
-  const double v = (y + 0.5 - 0.5 * camera.height) * scale;
+  const double u = raster::PixelToRay(x, 0.5 * camera.width, scale);
+  const double v = raster::PixelToRay(y, 0.5 * camera.height, scale);
   const dvec3 eyePos = camera.orthographic ? dvec3(u, v, -d) : dvec3(u * d, v * d, -d);
   const glm::dmat4 inv = glm::inverse(raster::ViewMatrix(camera));
   position = dvec3(inv * glm::dvec4(eyePos, 1.0));

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <stdexcept>
 
 #include "ao/patch_atlas.h"
 #include "io/error.h"
@@ -11,11 +10,10 @@
 namespace softmol::cli {
 namespace {
 
-// The option an invalid_argument from MakeAtlasLayout is about: a given patch size that does
-// not fit, else a texture too small for the automatic patch size.
-const char* OptionOf(const std::string& message) {
-  return message.find("patch size") != std::string::npos ? "--ao-patch" : "--ao-texture";
-}
+// The flag an ao::AtlasTooSmall is about: a given patch size that does not fit, else the texture
+// (given, or chosen) too small for the automatic patch size. The declarations (BakeParams) keep
+// every other atlas option in range, so not fitting is the one failure the flags can cause.
+const char* TooSmallFlag(const BakeFlags& f) { return f.patch > 0 ? "--ao-patch" : "--ao-texture"; }
 
 }  // namespace
 
@@ -64,8 +62,8 @@ ao::BakeOptions MakeBakeOptions(const BakeFlags& f, const raster::PrimitiveScene
     // it is not the default 1024².
     try {
       o.atlas = ao::ChooseAtlas(scene.spheres.size(), scene.cylinders.size(), o.atlas);
-    } catch (const std::invalid_argument& e) {
-      throw io::InputError({"--ao-texture"}, e.what());
+    } catch (const ao::AtlasTooSmall& e) {
+      throw io::InputError({TooSmallFlag(f)}, e.what());
     }
     if (o.atlas.textureSide != ao::AtlasOptions{}.textureSide)
       std::fprintf(stderr, "softmol: baked AO: a %d² atlas for %zu atoms and %zu bonds (--ao-texture to choose)\n",
@@ -84,8 +82,8 @@ ao::BakeOptions MakeBakeOptions(const BakeFlags& f, const raster::PrimitiveScene
   }
   try {
     (void)ao::MakeAtlasLayout(scene.spheres.size(), scene.cylinders.size(), o.atlas);
-  } catch (const std::invalid_argument& e) {
-    throw io::InputError({OptionOf(e.what())}, e.what());
+  } catch (const ao::AtlasTooSmall& e) {
+    throw io::InputError({TooSmallFlag(f)}, e.what());
   }
   return o;
 }

@@ -40,6 +40,7 @@ struct HaloBand {
 #include <hwy/highway.h>
 
 #include "effects/shared/prelude.h"
+#include "raster/pixel_ray-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace softmol::effects::HWY_NAMESPACE {
@@ -64,9 +65,7 @@ HWY_INLINE void HaloSamples(D d, const detail::HaloFrame& f, const detail::HaloD
   if (hn::AllFalse(d, hn::Gt(stored, discDepth))) return;
   const V zero = hn::Zero(d), one = hn::Set(d, 1.0f);
   const V pixel = hn::Iota(d, float(x));
-  // PixelToRay (raster/shared/quadratic.inc): u = ((x + 0.5) − width/2)·scale.
-  const V u = hn::Mul(hn::Sub(hn::Add(pixel, hn::Set(d, 0.5f)), hn::Set(d, f.halfWidth)),
-                      hn::Set(d, f.pixelScale));
+  const V u = raster::HWY_NAMESPACE::PixelToRay(d, pixel, f.halfWidth, f.pixelScale);
   const V cx = hn::Set(d, s.cx), cy = hn::Set(d, s.cy), cz = hn::Set(d, s.cz);
   V crossY, crossZ, B, a;
   if constexpr (kOrtho) {

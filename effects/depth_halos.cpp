@@ -1,7 +1,7 @@
 // effects/depth_halos.cpp — the depth-aware halo pass (Tarini et al. 2006 §5.2): per-atom disc
-// setup in double, binning of the discs into bands of rows, one TBB task per band (disjoint
-// outputs), the Highway kernel of effects/depth_halos-inl.h dispatched once per band, and the
-// scalar twin built from effects/shared/depth_halo.inc.
+// setup in double, binning of the discs into bands of rows (common/binning.h), one TBB task per
+// band (disjoint outputs), the Highway kernel of effects/depth_halos-inl.h dispatched once per
+// band, and the scalar twin built from effects/shared/depth_halo.inc.
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "effects/depth_halos.cpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "common/binning.h"
 #include "common/check.h"
 #include "effects/depth_halos.h"
 #include "effects/shared/prelude.h"
@@ -177,22 +178,18 @@ void RunDepthHalos(const raster::PrimitiveScene& scene, const raster::Camera& ca
   const std::vector<uint8_t>& drawn = setup.drawn;
   const size_t n = discs.size();
 
-  // Binning, serial and in sphere order (counting sort). The sum is exact, so the order within
-  // a band does not change the result; a fixed order still keeps every run identical.
+  // Each band's discs, in sphere order (common/binning.h). The sum is exact, so the order
+  // within a band does not change the result; a fixed order still keeps every run identical.
   const int bands = (height + kBandRows - 1) / kBandRows;
-  std::vector<uint32_t> start(size_t(bands) + 1, 0);
-  for (size_t i = 0; i < n; ++i)
-    if (drawn[i])
-      for (int b = discs[i].y0 / kBandRows; b <= discs[i].y1 / kBandRows; ++b) ++start[b + 1];
-  for (int b = 0; b < bands; ++b) start[b + 1] += start[b];
-  std::vector<uint32_t> list(start[bands]);
-  {
-    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
-    for (size_t i = 0; i < n; ++i)
-      if (drawn[i])
-        for (int b = discs[i].y0 / kBandRows; b <= discs[i].y1 / kBandRows; ++b)
-          list[fill[b]++] = uint32_t(i);
-  }
+  Bins bins;
+  std::vector<uint32_t> list;
+  BinItems(
+      n, size_t(bands),
+      [&](size_t i, auto&& f) {
+        if (drawn[i])
+          for (int b = discs[i].y0 / kBandRows; b <= discs[i].y1 / kBandRows; ++b) f(size_t(b));
+      },
+      [](size_t i) { return uint32_t(i); }, bins, list);
 
   const BandFn draw = scalar ? &DepthHaloBandScalar : &DepthHaloBand;
   const int stride = width + detail::kDepthHaloRowPad;
@@ -206,7 +203,7 @@ void RunDepthHalos(const raster::PrimitiveScene& scene, const raster::Camera& ca
       band.stride = stride;
       band.depth = depth.data();
       band.acc = acc.data();
-      const size_t count = start[b + 1] - start[b];
+      const size_t count = bins.Size(size_t(b));
       if (count == 0) {
         std::fill(halo.begin() + ptrdiff_t(size_t(band.y0) * size_t(width)),
                   halo.begin() + ptrdiff_t(size_t(band.y1) * size_t(width)), 0.0f);
@@ -218,7 +215,7 @@ void RunDepthHalos(const raster::PrimitiveScene& scene, const raster::Camera& ca
       for (int y = band.y0; y < band.y1; ++y)
         std::copy_n(g.depth.data() + g.Index(0, y), width,
                     depth.data() + size_t(y - band.y0) * size_t(stride));
-      draw(f, discs.data(), list.data() + start[b], count, band);
+      draw(f, discs.data(), list.data() + bins.Begin(size_t(b)), count, band);
       // Fixed point to float: an exact scaling by 2^-16, at most 1.
       for (int y = band.y0; y < band.y1; ++y) {
         const uint32_t* in = acc.data() + size_t(y - band.y0) * size_t(stride);

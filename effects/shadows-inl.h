@@ -19,6 +19,8 @@
 #include <vector>
 
 #include "effects/shadows.h"
+#include "raster/pixel_ray-inl.h"
+#include "raster/shared/prelude.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace softmol::effects::HWY_NAMESPACE {
@@ -103,9 +105,8 @@ HWY_INLINE size_t PretestSamples(D d, const detail::ShadowConstants& k, int y, s
 
   // Eye-space position from depth (as ao/cone_trace), pushed along the normal.
   const auto columns = hn::Add(hn::Iota(di, 0), hn::Set(di, int32_t(x)));
-  V ex = hn::Mul(hn::Sub(hn::Add(hn::ConvertTo(d, columns), hn::Set(d, 0.5f)), hn::Set(d, k.halfWidth)),
-                 hn::Set(d, k.pixelScale));
-  V ey = hn::Set(d, (((float(y) + 0.5f) - k.halfHeight) * k.pixelScale));
+  V ex = raster::HWY_NAMESPACE::PixelToRay(d, hn::ConvertTo(d, columns), k.halfWidth, k.pixelScale);
+  V ey = hn::Set(d, raster::shared::PixelToRay(float(y), k.halfHeight, k.pixelScale));
   if (!k.ortho) {
     ex = hn::Mul(ex, dep);
     ey = hn::Mul(ey, dep);

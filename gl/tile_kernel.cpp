@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numeric>
 
+#include "common/binning.h"
 #include "common/check.h"
 #include "gl/detail/passes.h"
 #include "gl/gl_api.h"
@@ -103,27 +103,14 @@ size_t TileKernelPass::Prepare(const raster::PrimitiveScene& scene, const raster
   const ViewSetup view = MakeViewSetup(camera, scene, options);
   fc = MakeFrameConstants(view, options);
   SetupPrimitives(scene, view, setup, (options.channels & raster::kSurfaceCoord) != 0);
-  // The CPU's draw order (raster/detail/setup.h, DepthBucketer): exact depth ties between
+  // The CPU's draw order (raster/detail/setup.h FrontToBackOrder): exact depth ties between
   // primitives are broken by it on both backends (tests/gl exact_ties checks it).
-  const DepthBucketer bucket = MakeDepthBucketer(fc);
-  std::vector<uint32_t> keys;
-  order.clear();
-  auto collect = [&](const std::vector<uint32_t>& key, const std::vector<BinEntry>& entry) {
-    for (size_t i = 0; i < key.size(); ++i) {
-      if (key[i] == kCulledKey) continue;
-      keys.push_back(bucket(entry[i].zMin));
-      order.push_back(entry[i].code);
-    }
-  };
-  collect(setup.sphereKey, setup.sphereEntry);
-  collect(setup.cylinderKey, setup.cylinderEntry);
-  collect(setup.ellipsoidKey, setup.ellipsoidEntry);
-  std::vector<uint32_t> perm(order.size());
-  std::iota(perm.begin(), perm.end(), 0u);
-  std::stable_sort(perm.begin(), perm.end(), [&](uint32_t a, uint32_t b) { return keys[a] < keys[b]; });
-  std::vector<uint32_t> sorted(order.size());
-  for (size_t i = 0; i < perm.size(); ++i) sorted[i] = order[perm[i]];
-  order.swap(sorted);
+  std::vector<BinEntry> sorted;
+  std::vector<uint32_t> buckets;
+  Bins bins;
+  FrontToBackOrder(setup, fc, bins, buckets, sorted);
+  order.resize(sorted.size());
+  for (size_t i = 0; i < sorted.size(); ++i) order[i] = sorted[i].code;
   return order.size();
 }
 

@@ -12,6 +12,7 @@
 
 #include <gemmi/resinfo.hpp>
 
+#include "common/binning.h"
 #include "io/elements.h"
 #include "io/error.h"
 
@@ -316,19 +317,18 @@ std::vector<uint8_t> Within(const Molecule& mol, const std::vector<uint8_t>& tar
   auto coord = [&](double v, int k) {
     return std::clamp<int64_t>(int64_t(std::floor((v - lo[k]) / cell)), 0, dims[k] - 1);
   };
+  // Each cell's selected atoms, in atom order (common/binning.h).
   const size_t cells = size_t(dims[0] * dims[1] * dims[2]);
-  std::vector<uint32_t> start(cells + 1, 0), atoms(count), cellOf(n, 0);
-  for (size_t i = 0; i < n; ++i)
-    if (target[i]) {
-      cellOf[i] = uint32_t(coord(mol.x[i], 0) + dims[0] * (coord(mol.y[i], 1) + dims[1] * coord(mol.z[i], 2)));
-      ++start[cellOf[i] + 1];
-    }
-  for (size_t c = 0; c < cells; ++c) start[c + 1] += start[c];
-  {
-    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
-    for (size_t i = 0; i < n; ++i)
-      if (target[i]) atoms[fill[cellOf[i]]++] = uint32_t(i);
-  }
+  Bins bins;
+  std::vector<uint32_t> atoms;
+  BinItems(
+      n, cells,
+      [&](size_t i, auto&& f) {
+        if (target[i])
+          f(size_t(coord(mol.x[i], 0) + dims[0] * (coord(mol.y[i], 1) + dims[1] * coord(mol.z[i], 2))));
+      },
+      [](size_t i) { return uint32_t(i); }, bins, atoms);
+  const std::vector<uint32_t>& start = bins.start;
   const double d2 = d * d;
   ForEachAtom(n, out, [&](size_t i) {
     if (target[i]) return true;

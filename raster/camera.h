@@ -47,5 +47,12 @@ glm::dmat4 ProjectionMatrix(const Camera& camera);  // needs nearPlane, farPlane
 // eye with direction (u, v, −1); orthographic rays start at (u, v, 0) with direction (0,0,−1).
 // pixelScale is tan-space units (perspective) or Å (orthographic) per pixel.
 double PixelScale(const Camera& camera);
+// A pixel centre's ray parameter along one axis, in double (the references: ao/reference_ao,
+// tests/support): ((p + 0.5) − extent/2)·scale, with halfExtent = width/2 or height/2 and
+// scale = PixelScale. The kernels' float twins: shared::PixelToRay (raster/shared/quadratic.inc)
+// and its SIMD form in raster/pixel_ray-inl.h.
+inline double PixelToRay(double pixel, double halfExtent, double scale) {
+  return ((pixel + 0.5) - halfExtent) * scale;
+}
 
 }  // namespace softmol::raster

@@ -1,10 +1,9 @@
-// raster/frame.cpp — the frame driver: setup (raster/setup.cpp), a stable front-to-back
-// radix sort, deterministic parallel binning into tiles (per-chunk counts + prefix sums),
-// then one TBB task per tile running the SIMD tile kernel.
+// raster/frame.cpp — the frame driver: setup (raster/setup.cpp), the front-to-back order (a
+// counting sort by quantised depth) and the binning into tiles, both deterministic and parallel
+// (common/binning.h), then one TBB task per tile running the SIMD tile kernel.
 #include "raster/frame.h"
 
 #include <algorithm>
-#include <array>
 #include <bit>
 #include <cstdint>
 #include <cmath>
@@ -18,6 +17,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "common/binning.h"
 #include "common/check.h"
 #include "common/timer.h"
 #include "io/error.h"
@@ -28,11 +28,10 @@ namespace softmol::raster {
 
 struct FrameWorkspace::Impl {
   detail::SetupOutput setup;
-  std::vector<uint32_t> keys, histogram;            // sort keys, per-chunk histograms
-  std::vector<uint32_t> chunkCounts;                // kChunks × tiles
-  std::vector<uint32_t> tileStart;                  // tiles + 1
-  std::vector<detail::BinEntry> sorted, sortedTmp;  // visible primitives, front to back
-  std::vector<detail::BinEntry> entries;            // bins, concatenated
+  Bins depthBins, tileBins;               // offsets (tileBins.start: each tile's list) + scratch
+  std::vector<uint32_t> depthBucket;      // scratch of FrontToBackOrder
+  std::vector<detail::BinEntry> sorted;   // visible primitives, front to back
+  std::vector<detail::BinEntry> entries;  // tile lists, concatenated
   std::vector<detail::TileCounters> tileCounters;
 };
 FrameWorkspace::FrameWorkspace() : impl(std::make_unique<Impl>()) {}
@@ -42,42 +41,34 @@ FrameWorkspace& FrameWorkspace::operator=(FrameWorkspace&&) noexcept = default;
 
 namespace {
 
-// Fixed number of work chunks for compaction, sorting and binning, independent of the
-// thread count, so the bins (and so the output) are the same bytes for any number of threads.
-constexpr int kChunks = 16;
+// Nearest depth → one of kDepthBuckets levels over [near, far]: zMin ≥ near − 1e-5·near, so
+// q > −1 (clamped to level 0); from the last level on, everything shares it.
+// (To uint32_t, not size_t: x86-64 converts a float to a signed integer in one instruction,
+// to an unsigned 64-bit one only with a compare and a fix-up.)
+struct DepthBucketer {
+  float zLo, zScale;
+  uint32_t operator()(float zMin) const {
+    const float q = (zMin - zLo) * zScale;
+    return q < float(detail::kDepthBuckets - 1) ? uint32_t(q > 0.0f ? q : 0.0f)
+                                                : detail::kDepthBuckets - 1;
+  }
+};
 
-// Stable counting sort of (key, item) by key < kDepthBuckets, one parallel pass with per-chunk
-// histograms (offsets digit-major, chunk-minor): stable and independent of the thread count.
-// Keys are nearest depths quantised by detail::DepthBucketer; stability keeps equal keys in
-// primitive-id order, so the output is deterministic.
-using detail::kDepthBuckets;
-void CountingSort(std::vector<uint32_t>& keys, std::vector<detail::BinEntry>& items,
-                  std::vector<detail::BinEntry>& itemsTmp, std::vector<uint32_t>& hist) {
-  const size_t n = keys.size();
-  itemsTmp.resize(n);
-  hist.resize(kChunks * kDepthBuckets);
-  const size_t chunkLen = (n + kChunks - 1) / kChunks;
-  tbb::parallel_for(0, kChunks, [&](int c) {
-    uint32_t* h = hist.data() + size_t(c) * kDepthBuckets;
-    std::fill(h, h + kDepthBuckets, 0u);
-    const size_t end = std::min(n, (c + 1) * chunkLen);
-    for (size_t i = size_t(c) * chunkLen; i < end; ++i) ++h[keys[i]];
-  });
-  uint32_t sum = 0;
-  for (size_t dgt = 0; dgt < kDepthBuckets; ++dgt)
-    for (int c = 0; c < kChunks; ++c) {
-      uint32_t& h = hist[size_t(c) * kDepthBuckets + dgt];
-      const uint32_t t = h;
-      h = sum;
-      sum += t;
-    }
-  tbb::parallel_for(0, kChunks, [&](int c) {
-    uint32_t* h = hist.data() + size_t(c) * kDepthBuckets;
-    const size_t end = std::min(n, (c + 1) * chunkLen);
-    for (size_t i = size_t(c) * chunkLen; i < end; ++i) itemsTmp[h[keys[i]]++] = items[i];
-  });
-  items.swap(itemsTmp);
-}
+// Calls f(tile) for every tile (row-major index) that the box of b overlaps.
+struct TileCover {
+  int tileShift;  // log2 of the tile size (a power of two)
+  size_t tilesX;
+  // The bounds are read into locals first: f stores 32-bit values, which the compiler must
+  // assume may alias b and tileShift, and would otherwise re-read them on every tile.
+  template <class F>
+  void operator()(const detail::BinEntry& b, F&& f) const {
+    const int shift = tileShift;
+    const size_t w = tilesX;
+    const int tx0 = b.x0 >> shift, tx1 = b.x1 >> shift, ty0 = b.y0 >> shift, ty1 = b.y1 >> shift;
+    for (int ty = ty0; ty <= ty1; ++ty)
+      for (int tx = tx0; tx <= tx1; ++tx) f(size_t(ty) * w + size_t(tx));
+  }
+};
 
 // Per-thread tile buffers, reused across tiles and frames.
 struct TileScratch {
@@ -159,6 +150,41 @@ bool FiniteNonNegative(float v) { return std::isfinite(v) && v >= 0.0f; }
 
 }  // namespace
 
+namespace detail {
+
+void FrontToBackOrder(const SetupOutput& su, const FrameConstants& fc, Bins& bins,
+                      std::vector<uint32_t>& buckets, std::vector<BinEntry>& order) {
+  const size_t nS = su.sphereKey.size(), nC = su.cylinderKey.size();
+  const size_t nAll = nS + nC + su.ellipsoidKey.size();
+  const DepthBucketer bucket{fc.nearPlane, float(kDepthBuckets) / (fc.farPlane - fc.nearPlane)};
+  // Each primitive's bucket first (kCulledKey: none; a visible key is the bits of its zMin),
+  // one streaming loop per array: the binning then reads one array instead of choosing among
+  // three per primitive twice (that fused form measured 15–25% slower on ball-and-stick).
+  buckets.resize(nAll);
+  auto quantise = [&](const std::vector<uint32_t>& key, size_t base) {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, key.size(), 8192), [&](const auto& r) {
+      for (size_t i = r.begin(); i != r.end(); ++i)
+        buckets[base + i] =
+            key[i] != kCulledKey ? bucket(std::bit_cast<float>(key[i])) : kCulledKey;
+    });
+  };
+  quantise(su.sphereKey, 0), quantise(su.cylinderKey, nS), quantise(su.ellipsoidKey, nS + nC);
+  auto entry = [&](size_t g) {
+    return g < nS        ? su.sphereEntry[g]
+           : g < nS + nC ? su.cylinderEntry[g - nS]
+                         : su.ellipsoidEntry[g - nS - nC];
+  };
+  // A culled primitive goes to no bucket, so the same pass also drops it.
+  BinItems(
+      nAll, kDepthBuckets,
+      [&](size_t g, auto&& f) {
+        if (buckets[g] != kCulledKey) f(buckets[g]);
+      },
+      entry, bins, order);
+}
+
+}  // namespace detail
+
 bool ValidFrameOptions(const FrameOptions& o) {
   return FiniteNonNegative(o.contourWidth) && FiniteNonNegative(o.contourDepthScale) &&
          FiniteNonNegative(o.nearClip);
@@ -185,88 +211,16 @@ FrameStats RenderGBuffer(const PrimitiveScene& scene, const Camera& camera,
                                                    (options.channels & kSurfaceCoord) != 0);
   const auto t1 = Clock::now();
 
-  // ---- front-to-back order and binning ----
-  const size_t visible = stats.primitivesSetUp - stats.primitivesCulled;
-  ws.keys.resize(visible);
-  ws.sorted.resize(visible);
-  {
-    // Parallel, order-preserving compaction of the visible primitives (ids ascending).
-    const detail::SetupOutput& su = ws.setup;
-    const size_t nS = su.sphereKey.size(), nC = su.cylinderKey.size();
-    const size_t nAll = nS + nC + su.ellipsoidKey.size();
-    auto key = [&](size_t g) {
-      return g < nS        ? su.sphereKey[g]
-             : g < nS + nC ? su.cylinderKey[g - nS]
-                           : su.ellipsoidKey[g - nS - nC];
-    };
-    auto entry = [&](size_t g) {
-      return g < nS        ? su.sphereEntry[g]
-             : g < nS + nC ? su.cylinderEntry[g - nS]
-                           : su.ellipsoidEntry[g - nS - nC];
-    };
-    const size_t len = (nAll + kChunks - 1) / kChunks;
-    const detail::DepthBucketer bucket = detail::MakeDepthBucketer(fc);
-    std::array<size_t, kChunks + 1> start{};
-    tbb::parallel_for(0, kChunks, [&](int c) {
-      size_t k = 0;
-      for (size_t g = size_t(c) * len; g < std::min(nAll, (c + 1) * len); ++g)
-        k += key(g) != detail::kCulledKey ? 1 : 0;
-      start[size_t(c) + 1] = k;
-    });
-    for (int c = 0; c < kChunks; ++c) start[size_t(c) + 1] += start[size_t(c)];
-    tbb::parallel_for(0, kChunks, [&](int c) {
-      size_t k = start[size_t(c)];
-      for (size_t g = size_t(c) * len; g < std::min(nAll, (c + 1) * len); ++g) {
-        if (key(g) == detail::kCulledKey) continue;
-        const detail::BinEntry e = entry(g);
-        ws.keys[k] = bucket(e.zMin);
-        ws.sorted[k++] = e;
-      }
-    });
-  }
-  CountingSort(ws.keys, ws.sorted, ws.sortedTmp, ws.histogram);
-
+  // ---- front-to-back order and binning: each tile's list stays front to back, then by id ----
+  detail::FrontToBackOrder(ws.setup, fc, ws.depthBins, ws.depthBucket, ws.sorted);
   const int ts = options.tileSize;
   const int tilesX = (camera.width + ts - 1) / ts, tilesY = (camera.height + ts - 1) / ts;
   const size_t nTiles = size_t(tilesX) * size_t(tilesY);
-  ws.chunkCounts.assign(size_t(kChunks) * nTiles, 0);
-  const size_t chunkLen = (visible + kChunks - 1) / kChunks;
-  const int tileShift = std::countr_zero(unsigned(ts));  // ts is a power of two
-  auto forEachTile = [&](const detail::BinEntry& b, auto&& f) {
-    const int tx0 = b.x0 >> tileShift, tx1 = b.x1 >> tileShift;
-    for (int ty = b.y0 >> tileShift; ty <= (b.y1 >> tileShift); ++ty)
-      for (int tx = tx0; tx <= tx1; ++tx) f(size_t(ty) * size_t(tilesX) + size_t(tx));
-  };
-  tbb::parallel_for(0, kChunks, [&](int c) {
-    uint32_t* counts = ws.chunkCounts.data() + size_t(c) * nTiles;
-    const size_t end = std::min(visible, (c + 1) * chunkLen);
-    for (size_t i = size_t(c) * chunkLen; i < end; ++i)
-      forEachTile(ws.sorted[i], [&](size_t tile) { ++counts[tile]; });
-  });
-  // Prefix sums, tile-major then chunk: chunk c of tile t writes after chunks < c, so every
-  // bin stays in sorted (front-to-back, then id) order.
-  ws.tileStart.resize(nTiles + 1);
-  uint32_t total = 0;
-  for (size_t t = 0; t < nTiles; ++t) {
-    ws.tileStart[t] = total;
-    for (int c = 0; c < kChunks; ++c) {
-      uint32_t& cnt = ws.chunkCounts[size_t(c) * nTiles + t];
-      const uint32_t n = cnt;
-      cnt = total;
-      total += n;
-    }
-  }
-  ws.tileStart[nTiles] = total;
-  ws.entries.resize(total);
-  tbb::parallel_for(0, kChunks, [&](int c) {
-    uint32_t* cursor = ws.chunkCounts.data() + size_t(c) * nTiles;
-    const size_t end = std::min(visible, (c + 1) * chunkLen);
-    for (size_t i = size_t(c) * chunkLen; i < end; ++i) {
-      const detail::BinEntry& e = ws.sorted[i];
-      forEachTile(e, [&](size_t tile) { ws.entries[cursor[tile]++] = e; });
-    }
-  });
-  stats.binEntries = total;
+  const TileCover cover{std::countr_zero(unsigned(ts)), size_t(tilesX)};
+  BinItems(
+      ws.sorted.size(), nTiles, [&](size_t i, auto&& f) { cover(ws.sorted[i], f); },
+      [&](size_t i) { return ws.sorted[i]; }, ws.tileBins, ws.entries);
+  stats.binEntries = ws.entries.size();
   const auto t2 = Clock::now();
 
   // ---- raster: one task per tile, disjoint pixels, no locks ----
@@ -288,8 +242,8 @@ FrameStats RenderGBuffer(const PrimitiveScene& scene, const Camera& camera,
       view.x1 = std::min(view.x0 + ts, camera.width);
       view.y1 = std::min(view.y0 + ts, camera.height);
       view.stride = view.x1 - view.x0;
-      const std::span<const detail::BinEntry> list(ws.entries.data() + ws.tileStart[t],
-                                                   ws.tileStart[t + 1] - ws.tileStart[t]);
+      const std::span<const detail::BinEntry> list(ws.entries.data() + ws.tileBins.Begin(t),
+                                                   ws.tileBins.Size(t));
       detail::RasterizeTile(fc, prims, list, view, ws.tileCounters[t]);
       CopyOut(view, ch, out);
     }

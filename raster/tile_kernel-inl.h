@@ -18,6 +18,7 @@
 
 #include "raster/detail/tile.h"
 #include "raster/detail/tile_common.h"
+#include "raster/pixel_ray-inl.h"
 #include "raster/shared/prelude.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -41,12 +42,6 @@ HWY_INLINE void SolveQuadratic(D d, V a, V B, V C, V disc, V& tNear, V& tFar) {
     tNear = hn::IfThenElse(hn::Lt(t1, t0), t1, t0);
     tFar = hn::IfThenElse(hn::Lt(t1, t0), t0, t1);
   }
-}
-
-// Twin of PixelToRay (quadratic.inc): pixel centre to ray parameter.
-template <class D, class V = hn::Vec<D>>
-HWY_INLINE V PixelToRay(D d, V pixel, float halfExtent, float scale) {
-  return hn::Mul(hn::Sub(hn::Add(pixel, hn::Set(d, 0.5f)), hn::Set(d, halfExtent)), hn::Set(d, scale));
 }
 
 // Twin of Dot3 (attributes.inc).

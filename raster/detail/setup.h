@@ -12,6 +12,10 @@
 #include "raster/frame.h"
 #include "raster/primitives.h"
 
+namespace softmol {
+struct Bins;  // common/binning.h
+}  // namespace softmol
+
 namespace softmol::raster::detail {
 
 // The camera reduced to what setup needs, in double: eye-space basis and ray scales.
@@ -63,18 +67,12 @@ uint64_t SetupPrimitives(const PrimitiveScene& scene, const ViewSetup& view, Set
 // The front-to-back draw order: visible primitives in id order (spheres, cylinders,
 // ellipsoids), stably sorted by their nearest depth quantised to kDepthBuckets levels over
 // [near, far] (ample for ordering). Exact depth ties between primitives are broken by this
-// order, so every backend must draw in it: raster/frame.cpp sorts by it, the GL mirror
-// (gl/tile_kernel.cpp) draws in it.
+// order, so every backend must draw in it: raster/frame.cpp bins from it, the GL mirror
+// (gl/tile_kernel.cpp) draws in it. Fills `order` (one BinEntry per visible primitive);
+// `bins` and `buckets` are scratch. Threads: the current TBB arena; the order is the same for
+// any count.
 inline constexpr uint32_t kDepthBuckets = 4096;
-struct DepthBucketer {
-  float zLo, zScale;
-  uint32_t operator()(float zMin) const {
-    const float q = (zMin - zLo) * zScale;  // zMin ≥ near − 1e-5·near, so q > −1
-    return q < float(kDepthBuckets - 1) ? uint32_t(q > 0.0f ? q : 0.0f) : kDepthBuckets - 1;
-  }
-};
-inline DepthBucketer MakeDepthBucketer(const FrameConstants& fc) {
-  return {fc.nearPlane, float(kDepthBuckets) / (fc.farPlane - fc.nearPlane)};
-}
+void FrontToBackOrder(const SetupOutput& setup, const FrameConstants& fc, Bins& bins,
+                      std::vector<uint32_t>& buckets, std::vector<BinEntry>& order);
 
 }  // namespace softmol::raster::detail

@@ -115,15 +115,37 @@ TEST(AoPatchAtlas, LayoutFollowsThePaperAndPatchesDoNotOverlap) {
       // Largest that fits: one size up no longer fits.
       AtlasOptions bigger = o;
       bigger.patchSize = l.patchSize + 1;
-      EXPECT_THROW(MakeAtlasLayout(37, 50, bigger), std::invalid_argument);
+      EXPECT_THROW(MakeAtlasLayout(37, 50, bigger), AtlasTooSmall);
     }
   o = {};
   o.textureSide = 64;
   o.patchSize = 9;
-  EXPECT_THROW(MakeAtlasLayout(50, 0, o), std::invalid_argument);  // 7 × 7 = 49 cells
+  EXPECT_THROW(MakeAtlasLayout(50, 0, o), AtlasTooSmall);  // 7 × 7 = 49 cells
   EXPECT_NO_THROW(MakeAtlasLayout(49, 0, o));
+  o.patchSize = 0;
+  o.textureSide = 16;
+  EXPECT_THROW(MakeAtlasLayout(100, 0, o), AtlasTooSmall);  // automatic size: < 2 texels
+  // An option out of range is a plain invalid_argument, never AtlasTooSmall (the CLI turns
+  // only the latter into a message about its flags).
   o.patchSize = 1;
   EXPECT_THROW(MakeAtlasLayout(1, 0, o), std::invalid_argument);
+  const auto outOfRangeIsNotTooSmall = [](const AtlasOptions& bad) {
+    try {
+      (void)MakeAtlasLayout(1, 0, bad);
+    } catch (const AtlasTooSmall&) {
+      return false;
+    } catch (const std::invalid_argument&) {
+      return true;
+    }
+    return false;
+  };
+  EXPECT_TRUE(outOfRangeIsNotTooSmall(o));
+  o = {};
+  o.textureSide = 1;
+  EXPECT_TRUE(outOfRangeIsNotTooSmall(o));
+  o = {};
+  o.cylindersPerPatch = 4;
+  EXPECT_TRUE(outOfRangeIsNotTooSmall(o));
 }
 
 // ---- The seam test ----
@@ -353,7 +375,7 @@ TEST(AoPatchAtlas, ChooseAtlasFitsTheStructure) {
   const AtlasOptions huge = ChooseAtlas(10328400, 10696800, base);  // 10 M atoms: 16384², 4 texels
   EXPECT_EQ(huge.textureSide, 16384);
   EXPECT_GE(MakeAtlasLayout(10328400, 10696800, huge).patchSize, 2);
-  EXPECT_THROW(ChooseAtlas(size_t(1) << 30, 0, base), std::invalid_argument);
+  EXPECT_THROW(ChooseAtlas(size_t(1) << 30, 0, base), AtlasTooSmall);
 }
 
 }  // namespace

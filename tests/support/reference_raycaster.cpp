@@ -218,8 +218,8 @@ ReferenceImage RayCastReference(const raster::PrimitiveScene& scene, const raste
   }
   for (int y = 0; y < cam.height; ++y)
     for (int x = 0; x < cam.width; ++x) {
-      const double u = (x + 0.5 - v.halfWidth) * v.pixelScale;
-      const double w = (y + 0.5 - v.halfHeight) * v.pixelScale;
+      const double u = raster::PixelToRay(x, v.halfWidth, v.pixelScale);
+      const double w = raster::PixelToRay(y, v.halfHeight, v.pixelScale);
       Ray ray;
       if (v.ortho) {
         ray.o = dvec3(u, w, 0.0);
