@@ -135,7 +135,8 @@ void SetInt(GLuint p, const char* name, int v) { glProgramUniform1i(p, glGetUnif
 void SetFloat(GLuint p, const char* name, float v) { glProgramUniform1f(p, glGetUniformLocation(p, name), v); }
 
 // `rows` work-group rows of `texels` invocations (y, then z slices past the dispatch limit),
-// then a barrier: the next dispatch reads what this one wrote.
+// then a barrier: the next dispatch reads what this one wrote, and the next buffer update (the
+// maps' clear) or read-back (the atlas) must see it.
 void Dispatch(GLuint p, size_t texels, size_t rows) {
   if (texels == 0 || rows == 0) return;
   const size_t slices = (rows + kMaxGroups - 1) / kMaxGroups;
@@ -143,7 +144,7 @@ void Dispatch(GLuint p, size_t texels, size_t rows) {
   SetInt(p, "uRowsPerSlice", int(perSlice));
   glUseProgram(p);
   glDispatchCompute(GLuint((texels + kLocalSize - 1) / kLocalSize), GLuint(perSlice), GLuint(slices));
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
 void BindKind(const BakeBuffers& b, int kind) {
