@@ -130,6 +130,7 @@ HWY_AFTER_NAMESPACE();
 
 #include "ao/direction_set.h"
 #include "ao/shadow_bake.h"
+#include "ao/shadow_bake_setup.h"
 #include "ao/surface_maps.h"
 #include "common/check.h"
 #include "common/timer.h"
@@ -153,8 +154,9 @@ constexpr int32_t kBandRows = 16;
 // ---- Scalar twins (the paper's arithmetic, one texel at a time) ---------------------------
 
 void SpanMinMaxScalar(float* top, float* bottom, const bake::Span& s) {
+  const shared::BakeSpan span{s.x0, s.x1, s.base, s.slope};
   for (int32_t x = s.x0; x <= s.x1; ++x) {
-    const float h = s.base + s.slope * (float(x) + 0.5f);
+    const float h = shared::BakeSpanHeight(span, x);
     top[x] = h > top[x] ? h : top[x];
     bottom[x] = h < bottom[x] ? h : bottom[x];
   }
@@ -180,14 +182,6 @@ void RasterBandScalar(const bake::DiscsView& discs, const uint32_t* discIds, siz
   }
 }
 
-size_t MapIndex(float x, float y, float maxCoord, int32_t size) {
-  x = x < 0.0f ? 0.0f : x;
-  x = x > maxCoord ? maxCoord : x;
-  y = y < 0.0f ? 0.0f : y;
-  y = y > maxCoord ? maxCoord : y;
-  return size_t(int32_t(y) * size + int32_t(x));
-}
-
 // Eq. 3: the light of the pair that faces the normal lights the point when no mid-surface is
 // nearer to that light than the point itself (less the bias); a lit point adds n·d.
 // `maps` holds the top map, then the bottom map.
@@ -198,11 +192,12 @@ size_t MapIndex(float x, float y, float maxCoord, int32_t size) {
 // chord midpoints lie on the plane through the axis spanned by the axis and d × axis: the
 // rectangle. So one map per direction serves both faces: the highest mid-surface over a texel
 // shadows points lit from +d, the lowest those lit from −d.
-float LitWeight(float h, float nd, size_t idx, const float* maps, int32_t size, float bias) {
-  const float* top = maps;
-  const float* bottom = maps + size_t(size) * size_t(size);
-  const bool lit = nd > 0.0f ? h + bias >= top[idx] : h - bias <= bottom[idx];
-  return lit ? std::abs(nd) : 0.0f;
+// The formulas are ao/shared/shadow_bake.inc's (the GL texel pass compiles the same text); only
+// the fetch is the twin's own.
+float LitWeight(const shared::BakePoint& p, float nd, float maxCoord, const float* maps, int32_t size, float bias) {
+  const size_t idx = size_t(shared::BakeMapIndex(p.x, p.y, maxCoord, size));
+  const float m = nd > 0.0f ? maps[idx] : maps[size_t(size) * size_t(size) + idx];
+  return shared::BakeLitWeight(p.h, nd, m, bias);
 }
 
 void SphereTexelsScalar(const float* qx, const float* qy, const float* qh, size_t n,
@@ -213,18 +208,16 @@ void SphereTexelsScalar(const float* qx, const float* qy, const float* qh, size_
     if (!s.ok[k]) continue;
     float* a = acc + k * n;
     for (int j = 0; j < pairs; ++j) {
-      float cx, cy, ch;
-      bake::ProjectPoint(views[j], s.x[k], s.y[k], s.z[k], cx, cy, ch);
+      shared::BakePoint c;
+      bake::ProjectPoint(views[j], s.x[k], s.y[k], s.z[k], c.x, c.y, c.h);
       const float rs = s.r[k] * views[j].scale;
       const float* px = qx + size_t(j) * n;
       const float* py = qy + size_t(j) * n;
       const float* ph = qh + size_t(j) * n;
       for (size_t i = 0; i < n; ++i) {
         const float nd = ph[i];  // the sphere's normal is its unit point q: n·d = q·d
-        const float x = cx + rs * px[i];
-        const float y = cy + rs * py[i];
-        const float h = ch + s.r[k] * nd;
-        a[i] = a[i] + LitWeight(h, nd, MapIndex(x, y, maxCoord, size), views[j].maps, size, bias);
+        const shared::BakePoint p = shared::SphereTexelPoint(c, rs, s.r[k], px[i], py[i], nd);
+        a[i] = a[i] + LitWeight(p, nd, maxCoord, views[j].maps, size, bias);
       }
     }
   }
@@ -241,33 +234,24 @@ void CylinderTexelsScalar(const float* cosA, const float* sinA, const float* axi
     float* m = norm + k * n;
     for (int j = 0; j < pairs; ++j) {
       const CylinderView c = bake::MakeCylinderView(cyl, views[j], k);
+      const shared::BakePoint end{c.ax, c.ay, c.ah}, axis{c.vx, c.vy, c.vh};
       for (size_t i = 0; i < n; ++i) {
-        const float nx = cosA[i] * c.e1x + sinA[i] * c.e2x;
-        const float ny = cosA[i] * c.e1y + sinA[i] * c.e2y;
-        const float nd = cosA[i] * c.e1h + sinA[i] * c.e2h;
-        const float x = (c.ax + axial[i] * c.vx) + c.rs * nx;
-        const float y = (c.ay + axial[i] * c.vy) + c.rs * ny;
-        const float h = (c.ah + axial[i] * c.vh) + c.r * nd;
-        a[i] = a[i] + LitWeight(h, nd, MapIndex(x, y, maxCoord, size), views[j].maps, size, bias);
+        const float nx = shared::BakeFrameComponent(cosA[i], sinA[i], c.e1x, c.e2x);
+        const float ny = shared::BakeFrameComponent(cosA[i], sinA[i], c.e1y, c.e2y);
+        const float nd = shared::BakeFrameComponent(cosA[i], sinA[i], c.e1h, c.e2h);
+        const shared::BakePoint p = shared::CylinderTexelPoint(end, axis, c.rs, c.r, axial[i], nx, ny, nd);
+        a[i] = a[i] + LitWeight(p, nd, maxCoord, views[j].maps, size, bias);
         m[i] = m[i] + std::abs(nd);
       }
     }
   }
 }
 
-// ---- The scene, relative to its bounding-sphere centre, in float ----------------------------
+}  // namespace
 
-struct BakeScene {
-  glm::dvec3 center{0.0};
-  float radius = 1.0f;
-  // Spheres (all of them: the atlas has a patch per sphere; undrawable ones are skipped).
-  std::vector<float> sx, sy, sz, sr;
-  std::vector<uint8_t> sphereOk;
-  // Cylinders: end 0, axis (end 1 − end 0), radius, angular frame e1, e2.
-  std::vector<float> ax, ay, az, vx, vy, vz, cr;
-  std::vector<float> e1x, e1y, e1z, e2x, e2y, e2z;
-  std::vector<uint8_t> cylinderOk;
-};
+// ---- The scene, relative to its bounding-sphere centre, in float (ao/shadow_bake_setup.h) ------
+
+namespace bake {
 
 BakeScene PrepareScene(const raster::PrimitiveScene& scene) {
   BakeScene b;
@@ -346,6 +330,12 @@ bake::PairView MakeView(glm::vec3 d, float radius, int size, const float* maps) 
   v.maps = maps;
   return v;
 }
+
+}  // namespace bake
+
+namespace {
+
+using bake::BakeScene;
 
 // The projected scene of one pair (SoA), the disc / rectangle spans' input.
 struct Projected {
@@ -469,6 +459,18 @@ void CheckOptions(const BakeOptions& o) {
 
 }  // namespace
 
+namespace bake {
+
+void CheckBakeOptions(const BakeOptions& o) { CheckOptions(o); }
+
+}  // namespace bake
+
+using bake::CylinderWorldOf;
+using bake::DirectionsFor;
+using bake::MakeView;
+using bake::PrepareScene;
+using bake::SphereWorldOf;
+
 void RenderMidSurfaceMaps(const raster::PrimitiveScene& scene, glm::vec3 d, int size,
                           MidSurfaceMaps& maps, bool simd) {
   SOFTMOL_CHECK(size >= 16 && size <= 8192);
@@ -586,7 +588,7 @@ AoAtlas BakeAo(const raster::PrimitiveScene& scene, const BakeOptions& o, BakeSt
   // both sums add the same terms in the same order). Then copy owners to their mirrors.
   const int side = layout.side;
   auto put = [&](const PatchRect& r, const OwnedTexel& t, float a, float n) {
-    const float value = n > 0.0f ? std::min(a / n, 1.0f) : 1.0f;
+    const float value = shared::BakeNormalised(a, n);
     atlas.texels[size_t(r.y0 + t.y) * size_t(side) + size_t(r.x0 + t.x)] = value;
   };
   tbb::parallel_for(tbb::blocked_range<size_t>(0, nS, 256), [&](const tbb::blocked_range<size_t>& r) {

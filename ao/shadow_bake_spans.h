@@ -10,6 +10,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "ao/shared/prelude.h"
+
 namespace softmol::ao::bake {
 
 // One pair's view of the scene, texel units in the map plane, Å along d (height: larger is
@@ -39,64 +41,20 @@ struct Span {
   float base, slope;
 };
 
-// The texel range whose centres lie in [lo, hi], clamped to the map.
-inline void CentreRange(double lo, double hi, int32_t size, Span& s) {
-  const double a = std::ceil(lo - 0.5), b = std::floor(hi - 0.5);
-  s.x0 = int32_t(std::max(a, 0.0));
-  s.x1 = int32_t(std::min(b, double(size - 1)));
-}
+// A row's span from the shared formula (ao/shared/shadow_bake.inc, which the GL twin compiles).
+inline Span SpanOf(const shared::BakeSpan& b) { return {b.x0, b.x1, b.base, b.slope}; }
 
 // Row y of disc i: centres with (x + 0.5 − cx)² + (y + 0.5 − cy)² ≤ r², constant height.
-// In float, the operations the SIMD rows (DiscRowsT, ao/shadow_bake-inl.h) run lane by lane:
+// The SIMD rows (DiscRowsT, ao/shadow_bake-inl.h) run the same float operations lane by lane:
 // sqrt, ceil and floor are exact (correctly rounded), so both give the same texels.
 inline Span DiscSpan(const DiscsView& v, uint32_t i, int32_t y, int32_t size) {
-  Span s{1, 0, v.h[i], 0.0f};
-  const float dy = (float(y) + 0.5f) - v.cy[i];
-  const float w2 = v.rt[i] * v.rt[i] - dy * dy;
-  if (!(w2 >= 0.0f)) return s;
-  const float w = std::sqrt(w2);
-  const float a = std::ceil((v.cx[i] - w) - 0.5f);
-  const float b = std::floor((v.cx[i] + w) - 0.5f);
-  const float last = float(size - 1);
-  s.x0 = int32_t(a < 0.0f ? 0.0f : a);
-  s.x1 = int32_t(b > last ? last : b);
-  return s;
+  return SpanOf(shared::BakeDiscSpan(v.cx[i], v.cy[i], v.h[i], v.rt[i], y, size));
 }
 
-// The part of the line X ↦ a·X + b that lies in [lo, hi], intersected into [xlo, xhi].
-inline void Slab(double a, double b, double lo, double hi, double& xlo, double& xhi) {
-  if (a == 0.0) {
-    if (b < lo || b > hi) xlo = 1.0, xhi = 0.0;
-    return;
-  }
-  double t0 = (lo - b) / a, t1 = (hi - b) / a;
-  if (t0 > t1) std::swap(t0, t1);
-  xlo = std::max(xlo, t0);
-  xhi = std::min(xhi, t1);
-}
-
-// Row y of rectangle i: centres q with 0 ≤ (q − p)·a ≤ |a|² (between the ends) and
-// |(q − p) × a| ≤ hw·|a| (within the half-width); the height is affine along the axis,
-// h0 + t·dh with t = (q − p)·a / |a|², i.e. base + slope·X along the row.
+// Row y of rectangle i: the texels between its ends and within its half-width, its height
+// affine along the axis (clipped in double, heights in float: BakeRectSpan).
 inline Span RectSpan(const RectsView& v, uint32_t i, int32_t y, int32_t size) {
-  Span s{1, 0, 0.0f, 0.0f};
-  const double ax = v.ax[i], ay = v.ay[i];
-  const double l2 = ax * ax + ay * ay;
-  if (!(l2 > 0.0)) return s;
-  const double yc = (double(y) + 0.5) - double(v.py[i]);
-  // q − p = (X − px, yc): dot = ax·X + (ay·yc − ax·px), cross = ax·yc − ay·(X − px).
-  double xlo = -1e30, xhi = 1e30;
-  Slab(ax, ay * yc - ax * double(v.px[i]), 0.0, l2, xlo, xhi);
-  const double reach = double(v.hw[i]) * std::sqrt(l2);
-  Slab(-ay, ax * yc + ay * double(v.px[i]), -reach, reach, xlo, xhi);
-  if (xlo > xhi) return s;
-  CentreRange(xlo, xhi, size, s);
-  // Height along the row, in float (what the kernels evaluate): t(X) = (ax·X + ay·yc − ax·px)/l2.
-  const float invL2 = float(1.0 / l2);
-  const float dh = v.dh[i];
-  s.slope = (float(ax) * invL2) * dh;
-  s.base = v.h0[i] + ((float(ay * yc) - v.ax[i] * v.px[i]) * invL2) * dh;
-  return s;
+  return SpanOf(shared::BakeRectSpan(v.px[i], v.py[i], v.ax[i], v.ay[i], v.h0[i], v.dh[i], v.hw[i], y, size));
 }
 
 // One cylinder in one pair's view (the texel pass): end 0 (ax, ay texels; ah Å), the axis
@@ -118,18 +76,20 @@ struct PairView {
   const float* maps;
 };
 
+// The pair's axes as shared::Float3 (ao/shared/shadow_bake.inc's arguments).
+inline shared::Float3 F3(float x, float y, float z) { return {x, y, z}; }
 inline void ProjectPoint(const PairView& v, float x, float y, float z, float& px, float& py, float& h) {
-  px = ((x * v.e0x + y * v.e0y) + z * v.e0z) * v.scale + v.half;
-  py = ((x * v.e1x + y * v.e1y) + z * v.e1z) * v.scale + v.half;
-  h = (x * v.dx + y * v.dy) + z * v.dz;
+  const shared::BakePoint p = shared::BakeProjectPoint(F3(x, y, z), F3(v.e0x, v.e0y, v.e0z), F3(v.e1x, v.e1y, v.e1z),
+                                                       F3(v.dx, v.dy, v.dz), v.scale, v.half);
+  px = p.x, py = p.y, h = p.h;
 }
 inline void ProjectVector(const PairView& v, float x, float y, float z, float& px, float& py, float& h) {
-  px = ((x * v.e0x + y * v.e0y) + z * v.e0z) * v.scale;
-  py = ((x * v.e1x + y * v.e1y) + z * v.e1z) * v.scale;
-  h = (x * v.dx + y * v.dy) + z * v.dz;
+  const shared::BakePoint p = shared::BakeProjectVector(F3(x, y, z), F3(v.e0x, v.e0y, v.e0z),
+                                                        F3(v.e1x, v.e1y, v.e1z), F3(v.dx, v.dy, v.dz), v.scale);
+  px = p.x, py = p.y, h = p.h;
 }
 inline float Dot(float ax, float ay, float az, float bx, float by, float bz) {
-  return (ax * bx + ay * by) + az * bz;
+  return shared::Dot3(F3(ax, ay, az), F3(bx, by, bz));
 }
 
 // The scene relative to its bounding-sphere centre (SoA, float), what the texel passes read.

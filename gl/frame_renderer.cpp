@@ -8,6 +8,7 @@
 
 #include "common/check.h"
 #include "common/timer.h"
+#include "gl/detail/ao_bake.h"
 #include "gl/detail/passes.h"
 #include "gl/gl_api.h"
 
@@ -19,10 +20,11 @@ struct FrameRenderer::Impl {
   detail::OutlinesPass outlines;
   detail::ShadowPass shadows;
   detail::ConeAoPass coneAo;
+  detail::AoBakePass aoBake;
   detail::BakedAoPass bakedAo;
   detail::DepthHalosPass depthHalos;
   detail::ObjectHalosPass objectHalos;
-  ao::AoAtlas atlas;  // baked on the CPU (the bake is not mirrored), uploaded when re-baked
+  ao::AoAtlas atlas;  // baked on GL (gl/ao_bake.cpp), read back and uploaded as the lookup's texture
   uint64_t atlasKey = 0;
   bool atlasBaked = false;
   ao::OccupancyPyramid pyramid;  // built on the CPU (the same pass as the CPU backend's), uploaded
@@ -79,6 +81,7 @@ FrameRenderer::FrameRenderer() : impl_(std::make_unique<Impl>()) {
   impl_->outlines.Create();
   impl_->shadows.Create();
   impl_->coneAo.Create();
+  impl_->aoBake.Create();
   impl_->bakedAo.Create();
   impl_->depthHalos.Create();
   impl_->objectHalos.Create();
@@ -90,6 +93,7 @@ FrameRenderer::~FrameRenderer() {
   impl_->outlines.Release();
   impl_->shadows.Release();
   impl_->coneAo.Release();
+  impl_->aoBake.Release();
   impl_->bakedAo.Release();
   impl_->depthHalos.Release();
   impl_->objectHalos.Release();
@@ -133,12 +137,12 @@ void GlGBuffer(GlPassContext& c) {
   c.stats = DrawGBuffer(c.m, c.scene, c.cam, fo);
 }
 
-// Baked on the CPU (the bake is not mirrored), once per structure and options as the CPU
-// backend keeps it, and uploaded when re-baked.
+// Baked on GL (the texel pass and the normalisation; the mid-surface maps are the CPU's
+// rasteriser's, uploaded), once per structure and options as the CPU backend keeps it.
 void GlAoBake(GlPassContext& c) {
   const uint64_t key = ao::BakeInputHash(c.scene, c.o.bake);
   if (c.m.atlasBaked && c.m.atlasKey == key) return;
-  c.m.atlas = ao::BakeAo(c.scene, c.o.bake);
+  c.m.atlas = c.m.aoBake.Bake(c.scene, c.o.bake);
   c.m.atlasKey = key;
   c.m.atlasBaked = true;
   c.m.bakedAo.Upload(c.m.atlas);

@@ -40,6 +40,7 @@
   X(glDeleteShader) \
   X(glDeleteTextures) \
   X(glDeleteVertexArrays) \
+  X(glDispatchCompute) \
   X(glDepthFunc) \
   X(glDepthMask) \
   X(glDisable) \
@@ -49,6 +50,7 @@
   X(glFinish) \
   X(glGetError) \
   X(glGetIntegerv) \
+  X(glGetNamedBufferSubData) \
   X(glGetProgramInfoLog) \
   X(glGetProgramiv) \
   X(glGetShaderInfoLog) \

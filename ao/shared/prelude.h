@@ -8,13 +8,16 @@
 #include "raster/shared/prelude.h"
 
 namespace softmol::ao::shared {
+using raster::shared::Dot3;
 using raster::shared::Float3;
 using std::abs;
+using std::ceil;
 using std::floor;
 using std::sqrt;
 // clang-format off
 #include "ao/shared/surface_maps.inc"
 #include "ao/shared/cone_step.inc"
+#include "ao/shared/shadow_bake.inc"
 // clang-format on
 
 // The voxel at integer coordinates of a res³ grid (index (z·res + y)·res + x), 0 outside it.

@@ -7,6 +7,7 @@
 //                    for a division and derives sqrt from inversesqrt);
 //   kColorAgreement  colour within one 8-bit level on >= 99.9% of the channel values.
 // The measured figures are printed (llvmpipe / Mesa 22.3: every buffer equal bit for bit).
+#include <algorithm>
 #include <bit>
 #include <cstdio>
 #include <glm/geometric.hpp>
@@ -18,6 +19,7 @@
 
 #include "effects/pass_list.h"
 #include "gl/compare.h"
+#include "gl/detail/ao_bake.h"
 #include "gl/detail/passes.h"
 #include "gl_test_context.h"
 #include "io/bonds.h"
@@ -227,6 +229,107 @@ TEST_P(RealMolecules, BakedAoWithinBounds) {
       },
       {"ao"});
 }
+
+// The bake's mid-surface maps (issue 16): gl/shaders/ao_bake_maps.comp against
+// ao::RenderMidSurfaceMaps, texel by texel. Equal as heights everywhere; equal in bits except
+// where a zero height ties with −0 (the CPU keeps the first written, the GL's atomic max the
+// integer order's +0), which no comparison of the texel pass can tell apart.
+struct MapCase {
+  const char* file;
+  raster::Style style;
+  int size;
+};
+
+class MidSurfaceMaps : public testing::TestWithParam<MapCase> {};
+
+TEST_P(MidSurfaceMaps, GlMapsEqualCpu) {
+  SOFTMOL_NEED_GL();
+  const MapCase& m = GetParam();
+  const raster::PrimitiveScene scene = SceneOf(LoadMolecule(m.file, m.style), m.style);
+  detail::AoBakePass pass;
+  pass.Create();
+  for (const glm::vec3 d : {glm::vec3(0, 0, 1), glm::normalize(glm::vec3(1, 2, 3)), glm::vec3(-0.6f, 0.8f, 0)}) {
+    ao::MidSurfaceMaps cpu;
+    ao::RenderMidSurfaceMaps(scene, d, m.size, cpu);
+    std::vector<float> top, bottom;
+    pass.DrawMaps(scene, d, m.size, top, bottom);
+    ASSERT_EQ(top.size(), cpu.top.size());
+    ASSERT_EQ(bottom.size(), cpu.bottom.size());
+    size_t unequal = 0, signedZeros = 0, covered = 0;
+    const auto count = [&](float g, float c) {
+      if (std::bit_cast<uint32_t>(g) == std::bit_cast<uint32_t>(c)) return;
+      ++(g == 0.0f && c == 0.0f ? signedZeros : unequal);
+    };
+    for (size_t i = 0; i < top.size(); ++i) {
+      count(top[i], cpu.top[i]);
+      count(bottom[i], cpu.bottom[i]);
+      covered += cpu.top[i] > -1.0e38f;
+    }
+    std::printf("[maps %s %d² d=(%.2f %.2f %.2f)] %zu covered, %zu differ, %zu ±0 ties\n", m.file, m.size,
+                double(d.x), double(d.y), double(d.z), covered, unequal, signedZeros);
+    EXPECT_GT(covered, top.size() / 20) << "the molecule should cover the map";
+    EXPECT_EQ(unequal, 0u) << "bits differ other than a zero's sign";
+  }
+  pass.Release();
+}
+
+INSTANTIATE_TEST_SUITE_P(Data, MidSurfaceMaps,
+                         testing::Values(MapCase{"pept.pdb", raster::Style::kSpacefill, 64},
+                                         MapCase{"pept.pdb", raster::Style::kBalls, 256},
+                                         MapCase{"il2.pdb", raster::Style::kLicorice, 512},
+                                         MapCase{"il2.pdb", raster::Style::kSpacefill, 1024}));
+
+// The bake itself (issue 16): the GL texel pass and normalisation (gl/ao_bake.cpp) against
+// ao::BakeAo, texel by texel, bit for bit: both add the same terms of eq. 3 in the same pair
+// order from ao/shared/shadow_bake.inc, so any difference is a mirror bug, not rounding.
+struct BakeCase {
+  const char* file;
+  raster::Style style;
+  int directions, mapSize, textureSide;
+  ao::PatchKind sphereMap;
+  int cylindersPerPatch;
+};
+
+class AtlasBake : public testing::TestWithParam<BakeCase> {};
+
+TEST_P(AtlasBake, GlAtlasEqualsCpuBitForBit) {
+  SOFTMOL_NEED_GL();
+  const BakeCase& b = GetParam();
+  const raster::PrimitiveScene scene = SceneOf(LoadMolecule(b.file, b.style), b.style);
+  ao::BakeOptions o;
+  o.directions = b.directions;
+  o.shadowMapSize = b.mapSize;
+  o.atlas.textureSide = b.textureSide;
+  o.atlas.sphereMap = b.sphereMap;
+  o.atlas.cylindersPerPatch = b.cylindersPerPatch;
+  const ao::AoAtlas cpu = ao::BakeAo(scene, o);
+  detail::AoBakePass pass;
+  pass.Create();
+  const ao::AoAtlas gl = pass.Bake(scene, o);
+  pass.Release();
+  ASSERT_EQ(gl.texels.size(), cpu.texels.size());
+  size_t differ = 0, shaded = 0;
+  uint32_t maxUlp = 0;
+  for (size_t i = 0; i < cpu.texels.size(); ++i) {
+    const uint32_t a = std::bit_cast<uint32_t>(cpu.texels[i]), g = std::bit_cast<uint32_t>(gl.texels[i]);
+    differ += a != g;
+    maxUlp = std::max(maxUlp, a > g ? a - g : g - a);  // both in [0, 1]: the bit distance is the ULPs
+    shaded += cpu.texels[i] > 0.0f && cpu.texels[i] < 1.0f;
+  }
+  std::printf("[bake %s %d dirs, map %d, atlas %d, %s] %zu texels, %zu partly occluded, %zu differ, max %u ULP\n",
+              b.file, b.directions, b.mapSize, b.textureSide,
+              b.sphereMap == ao::PatchKind::kCube ? "cube" : "octahedral", cpu.texels.size(), shaded, differ, maxUlp);
+  EXPECT_GT(shaded, 100u) << "the bake should occlude something (else the comparison proves little)";
+  EXPECT_EQ(differ, 0u);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Data, AtlasBake,
+    testing::Values(BakeCase{"pept.pdb", raster::Style::kSpacefill, 4, 64, 256, ao::PatchKind::kOctahedral, 2},
+                    BakeCase{"pept.pdb", raster::Style::kBalls, 8, 128, 512, ao::PatchKind::kCube, 1},
+                    BakeCase{"pept.pdb", raster::Style::kLicorice, 32, 128, 512, ao::PatchKind::kOctahedral, 3},
+                    BakeCase{"il2.pdb", raster::Style::kSpacefill, 16, 128, 1024, ao::PatchKind::kCube, 2},
+                    BakeCase{"il2.pdb", raster::Style::kBalls, 32, 256, 1024, ao::PatchKind::kOctahedral, 2}));
 
 TEST_P(RealMolecules, DepthHalosWithinBounds) {
   SOFTMOL_NEED_GL();
