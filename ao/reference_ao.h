@@ -3,7 +3,8 @@
 // pixel by tracing cosine-distributed rays (so the estimator is the fraction that escapes)
 // against the exact spheres, open cylinders and ellipsoids, in double precision, through a
 // uniform grid. Rays are unbounded. Stratified, seeded per pixel: the result is the same bits
-// for any thread count. Slow by design (seconds): a yardstick, not a render path.
+// for any thread count. Slow by design (seconds): a yardstick, not a render path. The per-ray
+// formulas are shared text with the GL twin (ao/shared/reference_ao.inc, gl/reference_ao.cpp).
 #pragma once
 
 #include <cstdint>
@@ -41,7 +42,8 @@ class OcclusionScene {
   double Accessibility(const glm::dvec3& p, const glm::dvec3& n, int rays, uint64_t seed,
                        uint64_t stream, uint32_t skipId) const;
 
-  struct Impl;
+  struct Impl;  // ao/reference_ao_scene.h
+  const Impl& Data() const { return *impl_; }
 
  private:
   std::unique_ptr<Impl> impl_;

@@ -21,6 +21,7 @@ struct FrameRenderer::Impl {
   detail::ShadowPass shadows;
   detail::ConeAoPass coneAo;
   detail::AoBakePass aoBake;
+  detail::ReferenceAoPass referenceAo;
   detail::BakedAoPass bakedAo;
   detail::DepthHalosPass depthHalos;
   detail::ObjectHalosPass objectHalos;
@@ -82,6 +83,7 @@ FrameRenderer::FrameRenderer() : impl_(std::make_unique<Impl>()) {
   impl_->shadows.Create();
   impl_->coneAo.Create();
   impl_->aoBake.Create();
+  impl_->referenceAo.Create();
   impl_->bakedAo.Create();
   impl_->depthHalos.Create();
   impl_->objectHalos.Create();
@@ -94,6 +96,7 @@ FrameRenderer::~FrameRenderer() {
   impl_->shadows.Release();
   impl_->coneAo.Release();
   impl_->aoBake.Release();
+  impl_->referenceAo.Release();
   impl_->bakedAo.Release();
   impl_->depthHalos.Release();
   impl_->objectHalos.Release();
@@ -159,6 +162,13 @@ void GlOccupancyPyramid(GlPassContext& c) {
 
 void GlConeAo(GlPassContext& c) { c.m.coneAo.Run(c.m.gbuffer, c.cam, c.m.pyramid, c.o.cone, c.m.ao); }
 
+// The occlusion scene is built on the CPU by the CPU pass's own class and uploaded each frame
+// (the CPU pass rebuilds it each frame too); the rays run in GLSL.
+void GlReferenceAo(GlPassContext& c) {
+  c.m.referenceAo.Upload(ao::OcclusionScene(c.scene));
+  c.m.referenceAo.Run(c.m.gbuffer, c.cam, c.o.reference, c.m.ao);
+}
+
 void GlShadowMap(GlPassContext& c) {
   c.m.shadows.RenderMap(c.m.tileKernel, c.scene, c.cam, c.o.shading.lightDirection, c.o.shadow);
 }
@@ -215,7 +225,7 @@ constexpr GlPassFn kGlPasses[] = {
     GlBakedAoLookup,  // kBakedAoLookup
     GlOccupancyPyramid,  // kOccupancyPyramid
     GlConeAo,      // kConeAo
-    nullptr,       // kReferenceAo
+    GlReferenceAo,  // kReferenceAo
     GlShadowMap,   // kShadowMap
     GlShadows,     // kShadows
     GlOutlines,    // kOutlines

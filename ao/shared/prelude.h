@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 
 #include "raster/shared/prelude.h"
 
@@ -14,10 +15,12 @@ using std::abs;
 using std::ceil;
 using std::floor;
 using std::sqrt;
+using uint = uint32_t;  // GLSL's uint (reference_ao.inc hashes in 32 bits)
 // clang-format off
 #include "ao/shared/surface_maps.inc"
 #include "ao/shared/cone_step.inc"
 #include "ao/shared/shadow_bake.inc"
+#include "ao/shared/reference_ao.inc"
 // clang-format on
 
 // The voxel at integer coordinates of a res³ grid (index (z·res + y)·res + x), 0 outside it.

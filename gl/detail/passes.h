@@ -2,7 +2,8 @@
 // same stem: gl/tile_kernel.cpp (↔ raster/tile_kernel*.cpp), gl/shading.cpp (↔ effects/shading.cpp),
 // gl/outlines.cpp (↔ effects/outlines.cpp), gl/shadows.cpp (↔ effects/shadows.cpp),
 // gl/cone_ao.cpp (↔ ao/cone_trace.cpp), gl/baked_ao.cpp (↔ the lookup of ao/shadow_bake.cpp),
-// gl/depth_halos.cpp (↔ effects/depth_halos.cpp), gl/object_halos.cpp (↔ effects/object_halos.cpp).
+// gl/depth_halos.cpp (↔ effects/depth_halos.cpp), gl/object_halos.cpp (↔ effects/object_halos.cpp),
+// gl/reference_ao.cpp (↔ ao/reference_ao.cpp).
 #pragma once
 
 #include <cstdint>
@@ -12,6 +13,7 @@
 #include "ao/cone_trace.h"
 #include "ao/occupancy_pyramid.h"
 #include "ao/patch_atlas.h"
+#include "ao/reference_ao_scene.h"
 #include "effects/depth_halos.h"
 #include "effects/object_halos.h"
 #include "effects/outlines.h"
@@ -136,6 +138,24 @@ struct ConeAoPass {
   // into `accessibility` (G-buffer order).
   void Run(const GBufferTargets& g, const raster::Camera& camera, const ao::OccupancyPyramid& pyramid,
            const ao::ConeAoOptions& options, std::vector<float>& accessibility);
+};
+
+// The ray-traced reference AO (↔ ao/reference_ao.cpp): the CPU's occlusion scene (primitives
+// in double, uniform grid) uploaded as storage buffers, then `rays` rays per G-buffer sample
+// in double precision, one R32F accessibility each.
+struct ReferenceAoPass {
+  uint32_t program = 0;
+  uint32_t buffers[5] = {};  // prims, kind + id, cell starts, cell items, per-frame constants
+  int primCount = 0;
+  ao::shared::RefGrid grid{};  // of the uploaded scene
+  PlaneTarget target;
+  void Create();
+  void Release();
+  void Upload(const ao::OcclusionScene& scene);
+  // The rays of every sample of `g` (seen by `camera`) through the uploaded scene, read back
+  // into `accessibility` (G-buffer order).
+  void Run(const GBufferTargets& g, const raster::Camera& camera, const ao::ReferenceAoOptions& options,
+           std::vector<float>& accessibility);
 };
 
 // The baked-AO lookup (↔ ao/shadow_bake.cpp LookupBakedAo): the CPU's atlas uploaded as an

@@ -1,7 +1,8 @@
 // tests/ao/reference_ao_test.cpp — the ground-truth AO (ao/reference_ao.h) against closed
 // forms: a lone sphere is fully open, a point inside a shell is fully closed, a tilted point
 // on a plane sees (1 + cos θ)/2, a point inside a long tube sees almost nothing; the error
-// falls as rays grow; the G-buffer path is the same bits for 1 and 2 threads.
+// falls as rays grow; the G-buffer path is the same bits for 1 and 2 threads; the trig-free
+// ray directions of ao/shared/reference_ao.inc (shared with the GL twin) against libm.
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
@@ -11,6 +12,7 @@
 #include <numbers>
 
 #include "ao/reference_ao.h"
+#include "ao/shared/prelude.h"
 #include "io/bonds.h"
 #include "io/structure_reader.h"
 #include "raster/frame.h"
@@ -170,6 +172,43 @@ TEST(ReferenceAo, SameBitsForOneAndTwoThreads) {
   EXPECT_GT(n, 500);
   EXPECT_GT(sum / n, 0.3);
   EXPECT_LT(sum / n, 0.95);
+}
+
+// The directions are built without libm (GLSL has no double trigonometry): π/4 from three
+// floats, sin/cos by series on [0, π/4], the octant folding of RefCirclePoint. Each must match
+// libm to about an ULP, or the estimator's rays would leave the cosine distribution.
+TEST(ReferenceAo, TrigFreeDirectionsMatchLibm) {
+  EXPECT_EQ(shared::RefQuarterPi(), std::numbers::pi / 4.0);
+  for (int i = 0; i <= 1000; ++i) {
+    const double x = shared::RefQuarterPi() * double(i) / 1000.0;
+    ASSERT_NEAR(shared::RefSin(x), std::sin(x), 3e-16) << x;
+    ASSERT_NEAR(shared::RefCos(x), std::cos(x), 3e-16) << x;
+  }
+  uint32_t v = 12345u;
+  for (int i = 0; i < 100000; ++i) {
+    v = shared::RefHash(v + uint32_t(i));
+    const double phi = 2.0 * std::numbers::pi * double(v) * 0x1.0p-32;
+    const shared::RefCircle c = shared::RefCirclePoint(v);
+    ASSERT_NEAR(c.c, std::cos(phi), 1e-15) << v;
+    ASSERT_NEAR(c.s, std::sin(phi), 1e-15) << v;
+  }
+}
+
+// Every ray leaves the surface (positive along the normal) and is unit length, and the
+// cosine-weighted mean of n·ω over many rays is 2/3 (E[cos θ] for pdf cos θ/π).
+TEST(ReferenceAo, RaysAreCosineDistributedOverTheHemisphere) {
+  const shared::RefVec n{0.48, -0.6, 0.64};
+  const shared::RefBasis basis = shared::MakeRefBasis(n);
+  const int count = 4096;
+  double sum = 0.0;
+  for (int i = 0; i < count; ++i) {
+    const shared::RefVec d = shared::RefWorldRay(shared::RefLocalRay(shared::RefPixelKey(9u, 77u), i, count), basis, n);
+    const double cosTheta = shared::RefDot(d, n);
+    ASSERT_GE(cosTheta, 0.0) << i;
+    ASSERT_NEAR(shared::RefDot(d, d), 1.0, 1e-12) << i;
+    sum += cosTheta;
+  }
+  EXPECT_NEAR(sum / count, 2.0 / 3.0, 2e-3);
 }
 
 }  // namespace

@@ -60,8 +60,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"bad_aov", "render " + kPept + " -o %O --aov depth,colour", "--aov"},
         BadCase{"bad_ssaa", "render " + kPept + " -o %O --ssaa 9", "--ssaa"},
         BadCase{"bad_ao", "render " + kPept + " -o %O --ao sometimes", "--ao"},
-        // "--ao" with GL built in, "--backend" in builds without it: "--" covers both.
-        BadCase{"reference_ao_on_gl_backend", "render " + kPept + " -o %O --backend gl --ao reference", "--"},
+        BadCase{"zero_ao_rays", "render " + kPept + " -o %O --ao reference --ao-rays 0", "--ao-rays"},
         BadCase{"frames_without_trajectory", "render " + kPept + " -o %O --frames 0:3", "--frames"},
         BadCase{"frames_past_the_end", "render '" + Data("md.pdb") + "' --trajectory '" + Data("md.xtc") +
                                            "' --frames 0:999 -o %D/f%d.png", "--frames"},

@@ -18,7 +18,7 @@ namespace {
 constexpr double kColorAgreement = 0.999;
 
 // Plain, and with the effects the GL mirror computes from its own G-buffer (contour lines,
-// near-plane caps, depth cue, Sobel outlines, shadows, cone and baked AO, depth halos, object-space
+// near-plane caps, depth cue, Sobel outlines, shadows, cone, baked and reference AO, depth halos, object-space
 // halos around a selection; il2's default camera is ~84 Å from its centre, so the clip cuts it).
 class CliBackend : public testing::TestWithParam<const char*> {};
 
@@ -56,7 +56,8 @@ INSTANTIATE_TEST_SUITE_P(Effects, CliBackend,
                                          "--shadows --shadow-map 512 --pcf-samples 32",
                                          "--ao cone --cones 5 --ao-grid 64",
                                          "--ao baked --ao-directions 32 --ao-map 256 --ao-sphere-map cube",
-                                         "--halos --near-clip 86", "--highlight 'resi 30-40'"));
+                                         "--halos --near-clip 86", "--highlight 'resi 30-40'",
+                                         "--ao reference --ao-rays 8"));
 
 // --highlight on GL (Hermosilla et al. 2015 §6.1-6.2) gives the CPU's PNG bytes: a still frame
 // with a halo around 3sn6's ligand, and a trail across trajectory frames (md.xtc's ion, a
