@@ -14,6 +14,8 @@
 #include <hwy/highway.h>
 
 #include "ao/cone_trace.h"
+#include "raster/pixel_ray-inl.h"
+#include "raster/shared/prelude.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace softmol::ao::HWY_NAMESPACE {
@@ -127,11 +129,10 @@ HWY_INLINE void ConePixels(D d, const detail::ConeConstants& k, int x, int y, co
   const V ny = hn::IfThenElse(visible, hn::LoadU(d, nyRow + x), zero);
   const V nz = hn::IfThenElse(visible, hn::LoadU(d, nzRow + x), zero);
 
-  // PixelToRay (raster/shared/quadratic.inc): ((pixel + 0.5) − half) · scale.
+  // The rasterizer's pixel rays (raster/pixel_ray-inl.h, raster/shared/quadratic.inc).
   const V pixX = hn::ConvertTo(d, hn::Iota(hn::RebindToSigned<D>(), x));
-  V ex = hn::Mul(hn::Sub(hn::Add(pixX, hn::Set(d, 0.5f)), hn::Set(d, k.halfWidth)),
-                 hn::Set(d, k.pixelScale));
-  V ey = hn::Set(d, ((float(y) + 0.5f) - k.halfHeight) * k.pixelScale);
+  V ex = raster::HWY_NAMESPACE::PixelToRay(d, pixX, k.halfWidth, k.pixelScale);
+  V ey = hn::Set(d, raster::shared::PixelToRay(float(y), k.halfHeight, k.pixelScale));
   if (!k.ortho) {
     ex = hn::Mul(ex, dep);
     ey = hn::Mul(ey, dep);

@@ -16,6 +16,8 @@
 #include <hwy/highway.h>
 
 #include "effects/object_halos.h"
+#include "raster/pixel_ray-inl.h"
+#include "raster/shared/prelude.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace softmol::effects::HWY_NAMESPACE {
@@ -137,9 +139,8 @@ HWY_INLINE void HaloPixels(D d, const detail::HaloConstants& k, int x, int y, co
   using V = hn::Vec<D>;
   const V zero = hn::Zero(d), one = hn::Set(d, 1.0f);
   const V pixX = hn::ConvertTo(d, hn::Iota(hn::RebindToSigned<D>(), x));
-  const V u = hn::Mul(hn::Sub(hn::Add(pixX, hn::Set(d, 0.5f)), hn::Set(d, k.halfWidth)),
-                      hn::Set(d, k.pixelScale));
-  const V v = hn::Set(d, ((float(y) + 0.5f) - k.halfHeight) * k.pixelScale);
+  const V u = raster::HWY_NAMESPACE::PixelToRay(d, pixX, k.halfWidth, k.pixelScale);  // the rasterizer's rays
+  const V v = hn::Set(d, raster::shared::PixelToRay(float(y), k.halfHeight, k.pixelScale));
   V a[3], b[3];
   for (int r = 0; r < 3; ++r) {
     const V mu = hn::Mul(hn::Set(d, k.m[3 * r + 0]), u), mv = hn::Mul(hn::Set(d, k.m[3 * r + 1]), v);

@@ -1,7 +1,7 @@
 // raster/pixel_ray-inl.h — the SIMD twin of PixelToRay (raster/shared/quadratic.inc): a pixel
 // centre's ray parameter along one axis, ((p + 0.5) − extent/2)·scale, raster/camera.h's
 // convention. Every per-target kernel that casts the frame's pixel rays (the tile kernels,
-// depth halos, shadows) takes it from here, so that their rays are the rasterizer's bit for
+// depth halos, shadows, cone AO, object-space halos) takes it from here, so that their rays are the rasterizer's bit for
 // bit. Include it from an -inl.h compiled through hwy/foreach_target.h (hence the toggle
 // guard). Only Add Sub Mul (tests/raster/banned_ops_test.cpp greps this file).
 #if defined(SOFTMOL_RASTER_PIXEL_RAY_INL_H_) == defined(HWY_TARGET_TOGGLE)
