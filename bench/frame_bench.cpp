@@ -72,7 +72,6 @@ void ConeFrame(benchmark::State& state, int molecule, int style) {
   softmol::effects::RenderOptions o;
   o.ao = softmol::effects::AoMode::kCone;
   o.cone.cones = int(state.range(3));
-  o.shading = softmol::effects::AoShading();
   RunFrames(state, scene, cam, o, true);
 }
 

@@ -48,7 +48,6 @@ const io::Molecule& Topology(bool withBonds) {
 effects::RenderOptions ConeOptions(const io::Molecule& mol, bool highlight, bool trail) {
   effects::RenderOptions o;
   o.ao = effects::AoMode::kCone;
-  o.shading = effects::AoShading();
   if (highlight) {
     o.highlight.spheres = io::Evaluate(io::ParseSelection("ion"), mol);
     o.highlight.trail = trail ? 5.0 : 0.0;

@@ -45,7 +45,9 @@ void ParamInputs::AddOptions(CLI::App& command, std::vector<Shape> shapes, const
   }
 }
 
-// Flags are ordered after any scene value; each occurrence of a repeatable one in turn.
+// Bundle values come first, then scene values, then flags; each occurrence of a repeatable
+// flag in turn.
+constexpr size_t kSceneOrder = size_t(1) << 20;
 constexpr size_t kFlagOrder = size_t(1) << 40;
 
 void ParamInputs::CollectFlags() {
@@ -83,11 +85,28 @@ std::vector<GivenValue> ParamInputs::Ordered() const {
 }
 
 void ParamInputs::AddSceneValue(size_t param, std::string text, const io::SourceLocation& where) {
-  given_.push_back({param, std::move(text), where, given_.size()});
+  given_.push_back({param, std::move(text), where, kSceneOrder + given_.size()});
 }
 
 bool ParamInputs::Given(const std::string& name) const {
   return std::any_of(given_.begin(), given_.end(), [&](const GivenValue& v) { return shapes_[v.param].name == name; });
+}
+
+GivenValue ParamInputs::Last(const std::string& name) const {
+  const GivenValue* last = nullptr;
+  for (const GivenValue& v : given_)
+    if (shapes_[v.param].name == name && (!last || v.order > last->order)) last = &v;
+  return last ? *last : GivenValue{};
+}
+
+void ParamInputs::AddBundle(const std::vector<std::pair<std::string, std::string>>& values,
+                            const io::SourceLocation& where) {
+  for (const auto& [name, text] : values) {
+    const auto it = std::find_if(shapes_.begin(), shapes_.end(), [&](const Shape& s) { return s.name == name; });
+    if (it == shapes_.end()) throw io::InternalError("a preset names the unknown option --" + name);
+    if (!it->repeatable && Given(name)) continue;
+    given_.push_back({size_t(it - shapes_.begin()), text, where, given_.size()});
+  }
 }
 
 std::string ParamInputs::ReadScene(const std::string& path) {

@@ -51,6 +51,13 @@ class ParamInputs {
   // together in the order given (call after CollectFlags and ReadScene).
   std::vector<GivenValue> Ordered() const;
   bool Given(const std::string& name) const;
+  // The value that wins for `name` (the flag's, else the scene's, else a bundle's; the last one
+  // of a repeatable option), or an empty one when nothing gave it.
+  GivenValue Last(const std::string& name) const;
+  // A preset's values (cli/presets.h), applied before anything else: each one for a parameter
+  // that neither a flag nor the scene (nor an earlier bundle) gave; a repeatable parameter's
+  // values go before the given ones. `where` names the bundle in errors ("--preset qutemol").
+  void AddBundle(const std::vector<std::pair<std::string, std::string>>& values, const io::SourceLocation& where);
 
  private:
   void AddSceneValue(size_t param, std::string text, const io::SourceLocation& where);

@@ -44,6 +44,10 @@ struct RenderArgs {
   std::string trajectory;   // render its frames instead of the topology's coordinates
   std::string frames;       // A:B[:STEP], 0-based, inclusive; default all
   std::string highlight;    // selection to surround with a halo (Hermosilla §6.1)
+  bool highlightFromPreset = false;  // a preset's highlight: selecting nothing is not an error
+  std::string preset;       // --preset NAME (cli/presets.h), applied under the flags and scene
+  std::string lighting;     // --lighting NAME, likewise ("" = the default rig)
+  bool listPresets = false; // print the presets and light rigs, render nothing
   std::string backend = "cpu";  // cpu | gl (the OpenGL mirror; builds with SOFTMOL_BUILD_GL)
   std::string view;         // scene/view.h text: the whole camera
   bool printView = false;   // print the camera used, as --view text
@@ -56,7 +60,11 @@ struct RenderArgs {
   int repeat = 1;
   bool quiet = false;
   BakeFlags bake;                  // --ao baked: --ao-directions, ... (cli/bake_options.h)
-  effects::RenderOptions options;  // every pass's options
+  effects::RenderOptions options = [] {  // every pass's options; AO chosen per structure
+    effects::RenderOptions o;
+    o.ao = effects::AoMode::kAuto;
+    return o;
+  }();
 };
 // Every option of `softmol render`, declared once: the command's own, the bake's, the passes'.
 io::ParamTable<RenderArgs> RenderParams();

@@ -17,6 +17,7 @@
 #include "cli/commands.h"
 #include "cli/load_molecule.h"
 #include "cli/parse.h"
+#include "cli/presets.h"
 #include "cli/profile_trace.h"
 #include "common/timer.h"
 #include "effects/color.h"
@@ -70,12 +71,18 @@ io::Param<RenderArgs> LayerParam(std::string name, std::string hint, std::string
 io::Param<RenderArgs> ColorRuleParam() {
   io::Param<RenderArgs> p = io::ListParam<RenderArgs>(
       "color", [](auto& a) -> auto& { return a.layers.colors; }, "SCHEME|SEL=COLOR",
-      "Colour scheme (auto, element[:COLOR], chain, residue, ss, bfactor[:LO:HI], uniform:COLOR) or a colour, "
+      "Colour scheme (auto, element[:COLOR], cpk[:COLOR], chain, residue, ss, bfactor[:LO:HI], uniform:COLOR) or a colour, "
       "for every atom or SEL=...; applied in order", "molecule",
       [](std::string_view text, const io::SourceLocation& where) { return scene::ParseColorRule(text, where); },
       [](const scene::ColorRule& r) { return scene::FormatColorRule(r); });
   p.sceneKey = "colors";
   return p;
+}
+
+std::vector<std::pair<std::string, std::string>> BundleChoices(std::span<const OptionBundle> bundles) {
+  std::vector<std::pair<std::string, std::string>> choices;
+  for (const std::string& name : BundleNames(bundles)) choices.emplace_back(name, name);
+  return choices;
 }
 
 // The options `softmol render` itself reads (files, framing, the job).
@@ -97,6 +104,14 @@ io::ParamTable<RenderArgs> JobParams() {
                             [](std::string_view text, const io::SourceLocation& where) {
                               (void)ParseSize(std::string(text), where.ToString());
                             }),
+      ChoiceParam<RenderArgs>("preset", [](auto& a) -> auto& { return a.preset; }, BundleChoices(LookPresets()),
+                              "A look: style, colours, light and effects together (see --list-presets); any "
+                              "other flag or scene key overrides its values", "look"),
+      ChoiceParam<RenderArgs>("lighting", [](auto& a) -> auto& { return a.lighting; },
+                              BundleChoices(LightingPresets()),
+                              "A light rig (see --list-presets); --ambient, --key-light, ... override it", "look"),
+      SwitchParam<RenderArgs>("list-presets", [](auto& a) -> auto& { return a.listPresets; },
+                              "Print every preset and light rig with its settings, and exit", "look"),
       ChoiceParam<RenderArgs>("style", [](auto& a) -> auto& { return a.layers.style; }, scene::StyleNames(),
                               "Representation of every atom (the first layer)", "molecule"),
       LayerParam("show", "SEL=STYLE[,COLOR]",
@@ -203,6 +218,23 @@ io::ParamTable<RenderArgs> RenderParams() {
   return t;
 }
 
+namespace {
+
+// The preset's values, then its (or the given) light rig's, each under what was given.
+void ApplyBundles(ParamInputs& inputs) {
+  const auto apply = [&](std::span<const OptionBundle> bundles, const char* option) {
+    const GivenValue chosen = inputs.Last(option);
+    if (chosen.text.empty()) return;
+    const OptionBundle* bundle = FindBundle(bundles, chosen.text);
+    if (!bundle) return;  // the choice parameter reports the bad name when applied
+    inputs.AddBundle(bundle->values, io::SourceLocation{"--" + std::string(option) + " " + chosen.text});
+  };
+  apply(LookPresets(), "preset");
+  apply(LightingPresets(), "lighting");
+}
+
+}  // namespace
+
 RenderCommand::RenderCommand(CLI::App& app) : params_(RenderParams()) {
   command_ = app.add_subcommand("render", "Render a molecule to PNG or EXR");
   command_->add_option("MOLECULE", molecule_, "PDB or mmCIF file (plain or .gz), or a PSF topology with --trajectory (or the scene's \"molecule\")");
@@ -220,20 +252,14 @@ RenderArgs RenderCommand::Args() {
     const std::string sceneMolecule = params_.inputs().ReadScene(scene_);
     if (a.molecule.empty()) a.molecule = sceneMolecule;
   }
+  ApplyBundles(params_.inputs());
   params_.Apply(a);
+  a.highlightFromPreset = params_.inputs().Last("highlight").where.file.rfind("--preset", 0) == 0;
   effects::CheckRenderOptions(a.options);
   return a;
 }
 
 namespace {
-
-// The options as the frame renderer takes them: what follows from the AO method and the scene
-// (the bake's atlas size, the highlighted spheres) is filled in by RunRender.
-effects::RenderOptions FrameOptionsOf(const RenderArgs& a) {
-  effects::RenderOptions ro = a.options;
-  if (ro.ao != effects::AoMode::kNone) ro.shading = effects::AoShading();
-  return ro;
-}
 
 // The first pass of the plan that the GL mirror does not run, as the option that asked for it.
 #if SOFTMOL_HAVE_GL
@@ -262,12 +288,15 @@ void WarnEmptyLayers(const std::vector<std::string>& selections) {
 }
 
 // The highlight halo's spheres: those of the selected atoms (Hermosilla §6.1 surrounds atoms).
-std::vector<uint8_t> HighlightedSpheres(const io::Selection& selection, const std::string& text,
+// A preset's highlight ("ligand") that selects nothing is no error: the halo is left out.
+std::vector<uint8_t> HighlightedSpheres(const io::Selection& selection, const RenderArgs& a,
                                         const io::Molecule& mol, const raster::Representation& drawn) {
+  const std::string& text = a.highlight;
   const std::vector<uint8_t> atoms = io::Evaluate(selection, mol);
   std::vector<uint8_t> spheres(drawn.scene.spheres.size(), 0);
   bool any = false;
   for (size_t i = 0; i < drawn.sphereAtom.size(); ++i) any |= (spheres[i] = atoms[drawn.sphereAtom[i]]) != 0;
+  if (!any && a.highlightFromPreset) return {};
   if (!any) {
     const bool selectsAtoms = std::any_of(atoms.begin(), atoms.end(), [](uint8_t b) { return b != 0; });
     throw io::InputError({"--highlight"}, "selection '" + text + "' " +
@@ -340,13 +369,19 @@ raster::Camera FrameCamera(const RenderArgs& a, const std::optional<scene::View>
 }  // namespace
 
 int RunRender(const RenderArgs& a) {
+  if (a.listPresets) {
+    std::fputs(PresetListing().c_str(), stdout);
+    return 0;
+  }
   // Every option was checked as it was parsed; what remains needs several of them together.
   if (a.molecule.empty())
     throw io::InputError({"MOLECULE"}, "no molecule: give a file, or \"molecule\" in the --scene file");
   std::string output = a.output;  // "" until the frame count is known
   const OutputKind kind = output.empty() ? OutputKind::kPng : OutputKindOf(output);
   const ImageSize size = ParseSize(a.size, "--size");
-  effects::RenderOptions ro = FrameOptionsOf(a);
+  // What follows from the scene (the automatic AO, the bake's atlas, the highlighted spheres)
+  // is filled in once the molecule is read.
+  effects::RenderOptions ro = a.options;
   const uint32_t aovs = ro.aovs;
 #if !SOFTMOL_HAVE_GL
   if (a.backend == "gl")
@@ -355,6 +390,7 @@ int RunRender(const RenderArgs& a) {
   if (a.backend == "gl") {
     effects::RenderOptions planned = ro;
     if (!a.highlight.empty()) planned.highlight.spheres = {1};  // the halo passes will be planned
+    if (planned.ao == effects::AoMode::kAuto) planned.ao = effects::AoMode::kCone;  // baked or cone: both mirrored
     RequireMirrored(planned);
   }
 #endif
@@ -405,8 +441,10 @@ int RunRender(const RenderArgs& a) {
   trace.AddComplete("representation", "load", t, repMs);
   if (scene.size() == 0)
     throw io::InputError({a.molecule}, "nothing to draw: every atom is hidden (see --style, --show, --hide, --show-solvent)");
+  if (ro.ao == effects::AoMode::kAuto)
+    ro.ao = effects::AutomaticAo(scene.size(), a.bake.directions, trajectory != nullptr);
   if (ro.ao == effects::AoMode::kBaked) ro.bake = MakeBakeOptions(a.bake, scene);
-  if (highlight) ro.highlight.spheres = HighlightedSpheres(*highlight, a.highlight, loaded.molecule, drawn);
+  if (highlight) ro.highlight.spheres = HighlightedSpheres(*highlight, a, loaded.molecule, drawn);
 
   std::optional<scene::View> givenView;
   if (!a.view.empty()) givenView = scene::ParseView(a.view, {"--view"});

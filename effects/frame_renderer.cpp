@@ -15,13 +15,9 @@ namespace {
 
 }  // namespace
 
-ShadingOptions AoShading() {
-  // With AO the ambient term carries the shape (QuteMol's look): more ambient, less direct.
-  ShadingOptions s;
-  s.ambient = 0.75f;
-  s.diffuse = 0.40f;
-  s.specular = 0.25f;
-  return s;
+AoMode AutomaticAo(size_t primitives, int directions, bool trajectory) {
+  if (trajectory) return AoMode::kCone;
+  return double(primitives) * double(directions) <= kAutoBakeBudget ? AoMode::kBaked : AoMode::kCone;
 }
 
 ShadeInputs MakeShadeInputs(const RenderOptions& o, const raster::PrimitiveScene& scene,

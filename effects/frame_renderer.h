@@ -31,8 +31,9 @@ namespace softmol::effects {
 // Arbitrary output variables besides colour (DESIGN.md defines each).
 enum Aov : uint32_t { kAovDepth = 1, kAovNormal = 2, kAovId = 4, kAovAo = 8 };
 
-// Which ambient occlusion scales the ambient term (DESIGN.md defines AO; 1 = open).
+// Which ambient occlusion scales the light (DESIGN.md defines AO; 1 = open).
 enum class AoMode {
+  kAuto,       // the CLI's default: AutomaticAo picks kBaked or kCone before planning
   kNone,       // no AO pass runs
   kBaked,      // shadow-map AO baked into per-atom patches once per scene (Tarini et al.)
   kCone,       // occupancy pyramid + cone tracing, rebuilt per frame (Hermosilla et al.)
@@ -117,9 +118,20 @@ struct FrameResources {
   std::vector<float> halo;
 };
 
-// The lighting that suits AO (QuteMol's look: the ambient term carries the shape): what the
-// CLI and presets use whenever an AO method is on.
-ShadingOptions AoShading();
+// What `--ao auto` (the CLI's default) becomes for a structure of `primitives` drawn
+// primitives (spheres + cylinders + ellipsoids) baked with `directions` light directions:
+// kCone for a trajectory (every frame would need its own bake) and wherever the bake would not
+// fit kAutoBakeBudget, else kBaked (the better AO, Tarini et al.'s, paid once). The bake's cost
+// grows as directions × (one shadow map + primitives): measured on 2 cores (docs/PERFORMANCE.md)
+// 0.28 s for 1tii (5,684 atoms × 128 directions), 0.54 s for 4JSV (22,194 × 128), 9.8 s for
+// the 1.03 M-atom 3J6R assembly; the budget takes 4JSV and leaves the assembly to cone AO,
+// whose pass costs tens of ms a frame at 1080p.
+inline constexpr double kAutoBakeBudget = 3.0e6;  // primitives × directions
+AoMode AutomaticAo(size_t primitives, int directions, bool trajectory);
+
+// The colour shows AO: a method is on and --ao-strength is above 0 (at 0 the AO passes run only
+// for an AO AOV).
+inline bool AoSeen(const RenderOptions& o) { return o.ao != AoMode::kNone && o.shading.aoStrength > 0.0f; }
 
 // The compositing parameters of the options (colours, depth-cue range, near-clip lightening);
 // the per-sample buffers (AO, shadow, outline, halo) are left for the caller to attach.

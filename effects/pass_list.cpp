@@ -6,6 +6,7 @@
 namespace softmol::effects {
 
 std::vector<PlannedPass> PlanPasses(const RenderOptions& o) {
+  SOFTMOL_CHECK(o.ao != AoMode::kAuto);  // AutomaticAo resolves it first
   // Every pass whose effect is switched on, in run order; then walk backwards from the outputs:
   // a pass runs when a later pass (or the output) needs something it writes, and then what it
   // reads is needed too. The G-buffer always runs (the depth test needs it even when only

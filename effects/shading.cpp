@@ -24,17 +24,33 @@ glm::vec3 Normalize(glm::vec3 v) {
 
 }  // namespace
 
-void LightVectors(const ShadingOptions& o, glm::vec3& light, glm::vec3& half) {
-  light = Normalize(o.lightDirection);
-  half = Normalize(light + glm::vec3(0.0f, 0.0f, 1.0f));
+LightVectorSet LightVectors(const ShadingOptions& o) {
+  LightVectorSet v;
+  v.key = Normalize(o.lightDirection);
+  v.half = Normalize(v.key + glm::vec3(0.0f, 0.0f, 1.0f));
+  v.fill = Normalize(o.fillDirection);
+  return v;
+}
+
+ShadeConstants LightConstants(const ShadingOptions& o) {
+  const LightVectorSet v = LightVectors(o);
+  ShadeConstants c;
+  c.lightX = v.key.x, c.lightY = v.key.y, c.lightZ = v.key.z;
+  c.halfX = v.half.x, c.halfY = v.half.y, c.halfZ = v.half.z;
+  c.fillX = v.fill.x, c.fillY = v.fill.y, c.fillZ = v.fill.z;
+  c.ambient = o.ambient, c.key = o.key, c.fill = o.fill, c.specular = o.specular;
+  c.shininess = o.shininess;
+  c.aoStrength = o.aoStrength;
+  return c;
 }
 
 glm::vec3 ShadePixel(glm::vec3 normal, glm::vec3 baseColorLinear, float ambientOcclusion,
-                     glm::vec3 lightDirection, glm::vec3 halfVector, const ShadingOptions& o) {
-  const shared::LightingTerms t = shared::BlinnPhongTerms(
-      {normal.x, normal.y, normal.z}, {lightDirection.x, lightDirection.y, lightDirection.z},
-      {halfVector.x, halfVector.y, halfVector.z}, ambientOcclusion, o.ambient, o.diffuse, o.specular,
-      o.shininess);
+                     const ShadingOptions& o) {
+  const LightVectorSet v = LightVectors(o);
+  const shared::LightingTerms t = shared::LitTerms(
+      {normal.x, normal.y, normal.z}, {v.key.x, v.key.y, v.key.z}, {v.half.x, v.half.y, v.half.z},
+      {v.fill.x, v.fill.y, v.fill.z}, ambientOcclusion, 1.0f,
+      {o.ambient, o.key, o.fill, o.specular, o.shininess, o.aoStrength});
   return glm::vec3(baseColorLinear.x * t.k + t.s, baseColorLinear.y * t.k + t.s,
                    baseColorLinear.z * t.k + t.s);
 }
@@ -90,13 +106,7 @@ void ShadeAndResolve(const raster::GBuffer& g, int ssaa, const ShadingOptions& o
   // The G-buffer's own line and cap planes, when the raster pass wrote them.
   const bool haveLine = (g.channels & raster::kLine) != 0 && g.line.size() == samples;
   const bool haveCapped = (g.channels & raster::kCapped) != 0 && g.capped.size() == samples;
-  glm::vec3 light, half;
-  LightVectors(options, light, half);
-  ShadeConstants c;
-  c.lightX = light.x, c.lightY = light.y, c.lightZ = light.z;
-  c.halfX = half.x, c.halfY = half.y, c.halfZ = half.z;
-  c.ambient = options.ambient, c.diffuse = options.diffuse, c.specular = options.specular;
-  c.shininess = options.shininess;
+  ShadeConstants c = LightConstants(options);
   c.backdropR = backdrop.transparent ? 0.0f : backdrop.color.x;
   c.backdropG = backdrop.transparent ? 0.0f : backdrop.color.y;
   c.backdropB = backdrop.transparent ? 0.0f : backdrop.color.z;

@@ -1,7 +1,9 @@
 // effects/shading.h — deferred shading of the G-buffer (Sigg et al. 2006, §4 "Deferred
 // Shading"): each visible pixel is lit exactly once, after all overdraw is resolved.
-// Ambient + Lambert + Blinn-Phong with an integer exponent (so the bits are the same on every
-// machine), one white directional light, in linear light. Background pixels are left alone.
+// The light model is effects/shared/blinn_phong.inc's LitTerms: ambient light, a key light
+// (Lambert + Blinn-Phong with an integer exponent, so the bits are the same on every machine;
+// the one that casts the soft shadows) and a Lambert fill light from the other side, white, in
+// linear light, all multiplied by AO's visibility 1 − aoStrength·(1 − ao).
 #pragma once
 
 #include <span>
@@ -14,12 +16,16 @@
 
 namespace softmol::effects {
 
+// The light rig. The defaults are `--lighting default` (cli/presets.cpp lists the others).
 struct ShadingOptions {
-  glm::vec3 lightDirection{-0.35f, 0.45f, 0.82f};  // eye space, towards the light (normalized on use)
-  float ambient = 0.30f;
-  float diffuse = 0.70f;
-  float specular = 0.35f;
-  int shininess = 32;  // integer Blinn-Phong exponent, 1..1024
+  glm::vec3 lightDirection{-0.35f, 0.45f, 0.82f};  // key light, eye space, towards the light (normalized on use)
+  glm::vec3 fillDirection{0.55f, -0.30f, 0.78f};   // fill light, from the lower right
+  float ambient = 0.35f;
+  float key = 0.65f;       // key light's diffuse intensity
+  float fill = 0.2f;       // fill light's intensity
+  float specular = 0.3f;
+  int shininess = 32;      // integer Blinn-Phong exponent, 1..1024
+  float aoStrength = 1.0f;  // 0..1: how much AO darkens (0: not at all)
 };
 
 // What the shading pass composites over.
@@ -32,8 +38,9 @@ struct Backdrop {
 // empty span (or a strength of 0) skips its step, and with nothing given the output is the
 // plain lighting, bit for bit. Spans hold one value per G-buffer sample (index y·width + x).
 // Per sample, in this order:
-//   1. colour = base·(ambient·AO + diffuse·shadow·max(n·l,0)) + specular·shadow·(n·h)^k
-//      (Sigg §4 deferred shading + soft shadows). On a near-plane cap (G-buffer channel kCapped)
+//   1. colour = v·(base·(ambient + fill·max(n·f,0) + key·shadow·max(n·l,0)) + specular·shadow·(n·h)^k)
+//      with v = 1 − aoStrength·(1 − AO) (Sigg §4 deferred shading + soft shadows; Tarini §3 AO
+//      as the light). On a near-plane cap (G-buffer channel kCapped)
 //      AO = 1, and AO is lightened toward 1 within clipLighten Å behind clipNear (Tarini §5.3);
 //   2. the contour-line weight (G-buffer channel kLine) mixes in lineColor (Tarini §5.1);
 //   — background samples are the backdrop from here on —
@@ -73,7 +80,7 @@ bool ValidShadeInputs(const ShadeInputs& inputs);
 // (needs the normal, base-colour and id channels) and averages each ssaa×ssaa block into one
 // premultiplied linear RGBA pixel of `rgba` (4 floats a pixel, g.width/ssaa × g.height/ssaa,
 // top row first, as files store them). Fusing them means the shaded samples never go through
-// memory. `ambientOcclusion` (one value a sample, 1 = open) scales the ambient term when given.
+// memory. `ambientOcclusion` (one value a sample, 1 = open) scales the light when given.
 // Parallel over rows; the result does not depend on the thread count.
 void ShadeAndResolve(const raster::GBuffer& g, int ssaa, const ShadingOptions& options,
                      const Backdrop& backdrop, std::span<const float> ambientOcclusion,
@@ -83,13 +90,17 @@ void ShadeAndResolve(const raster::GBuffer& g, int ssaa, const ShadingOptions& o
 void ShadeAndResolve(const raster::GBuffer& g, int ssaa, const ShadingOptions& options,
                      const Backdrop& backdrop, const ShadeInputs& inputs, std::span<float> rgba);
 
-// One pixel, the formula ShadeDeferred applies (the reference for tests and the GL mirror).
-glm::vec3 ShadePixel(glm::vec3 normal, glm::vec3 baseColorLinear, float ambientOcclusion,
-                     glm::vec3 lightDirection, glm::vec3 halfVector, const ShadingOptions& o);
+// The unit light directions: the key light, Blinn's half vector for a viewer along +Z in eye
+// space, and the fill light. Using the constant view vector (as for a distant viewer) keeps
+// highlights stable as the molecule turns; the error against the true per-pixel view vector is
+// below the 30° FOV.
+struct LightVectorSet {
+  glm::vec3 key, half, fill;
+};
+LightVectorSet LightVectors(const ShadingOptions& o);
 
-// The unit light direction and Blinn's half vector for a viewer along +Z in eye space.
-// Using the constant view vector (as for a distant viewer) keeps highlights stable as the
-// molecule turns; the error against the true per-pixel view vector is below the 30° FOV.
-void LightVectors(const ShadingOptions& o, glm::vec3& light, glm::vec3& half);
+// One unshadowed pixel, the formula ShadeAndResolve applies (the reference for tests).
+glm::vec3 ShadePixel(glm::vec3 normal, glm::vec3 baseColorLinear, float ambientOcclusion,
+                     const ShadingOptions& o);
 
 }  // namespace softmol::effects

@@ -89,15 +89,18 @@ HWY_INLINE void ShadeSamples(D d, const ShadeConstants& c, const SampleRow& in, 
     ao = NearPlaneLighten(d, ao, hn::LoadU(d, in.depth + i), c.clipNear, c.clipInvLighten);
   const V shadow = in.shadow ? hn::LoadU(d, in.shadow + i) : one;
 
-  // ShadowedBlinnPhongTerms
+  // LitTerms
   const V nDotL = Dot3<D>(nx, ny, nz, hn::Set(d, c.lightX), hn::Set(d, c.lightY), hn::Set(d, c.lightZ));
   const V lambert = hn::IfThenElse(hn::Gt(nDotL, zero), nDotL, zero);
   const V nDotH = Dot3<D>(nx, ny, nz, hn::Set(d, c.halfX), hn::Set(d, c.halfY), hn::Set(d, c.halfZ));
   const V highlight = hn::IfThenElse(hn::And(hn::Gt(nDotH, zero), hn::Gt(nDotL, zero)),
                                      IntegerPower(d, nDotH, c.shininess), zero);
-  const V k = hn::Add(hn::Mul(hn::Set(d, c.ambient), ao),
-                      hn::Mul(hn::Set(d, c.diffuse), hn::Mul(shadow, lambert)));
-  const V s = hn::Mul(hn::Set(d, c.specular), hn::Mul(shadow, highlight));
+  const V nDotF = Dot3<D>(nx, ny, nz, hn::Set(d, c.fillX), hn::Set(d, c.fillY), hn::Set(d, c.fillZ));
+  const V fillLambert = hn::IfThenElse(hn::Gt(nDotF, zero), nDotF, zero);
+  const V visibility = hn::Sub(one, hn::Mul(hn::Set(d, c.aoStrength), hn::Sub(one, ao)));
+  const V k = hn::Mul(visibility, hn::Add(hn::Add(hn::Set(d, c.ambient), hn::Mul(hn::Set(d, c.fill), fillLambert)),
+                                          hn::Mul(hn::Set(d, c.key), hn::Mul(shadow, lambert))));
+  const V s = hn::Mul(visibility, hn::Mul(hn::Set(d, c.specular), hn::Mul(shadow, highlight)));
 
   // Base colour: sRGB bytes through the decode table.
   const auto rgb = hn::LoadU(du, in.baseColor + i);

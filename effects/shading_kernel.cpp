@@ -26,6 +26,8 @@ void ShadeSampleRowScalar(const ShadeConstants& c, const SampleRow& in, size_t c
   using namespace shared;
   const Float3 light{c.lightX, c.lightY, c.lightZ};
   const Float3 half{c.halfX, c.halfY, c.halfZ};
+  const Float3 fill{c.fillX, c.fillY, c.fillZ};
+  const LightRig rig{c.ambient, c.key, c.fill, c.specular, c.shininess, c.aoStrength};
   const bool cue = in.depth != nullptr && c.cueStrength > 0.0f;
   const bool clipLighten = in.depth != nullptr && c.clipInvLighten > 0.0f;
   for (size_t i = 0; i < count; ++i) {
@@ -37,15 +39,14 @@ void ShadeSampleRowScalar(const ShadeConstants& c, const SampleRow& in, size_t c
       b = c.backdropB;
       a = c.backdropA;
     } else {
-      // 1. Lighting: base·(ambient·AO + diffuse·shadow·n·l) + specular·shadow·(n·h)^k, with the
-      //    AO of a near-plane cap fully open and lightened near the plane (Tarini §5.3).
+      // 1. Lighting (LitTerms: AO's visibility times ambient + fill + shadowed key light), with
+      //    the AO of a near-plane cap fully open and lightened near the plane (Tarini §5.3).
       const Float3 n{in.normalX[i], in.normalY[i], in.normalZ[i]};
       float ao = in.ambientOcclusion ? in.ambientOcclusion[i] : 1.0f;
       if (in.capped) ao = in.capped[i] > 0.5f ? 1.0f : ao;
       if (clipLighten) ao = NearPlaneLighten(ao, in.depth[i], c.clipNear, c.clipInvLighten);
       const float shadow = in.shadow ? in.shadow[i] : 1.0f;
-      const LightingTerms t = ShadowedBlinnPhongTerms(n, light, half, ao, shadow, c.ambient,
-                                                      c.diffuse, c.specular, c.shininess);
+      const LightingTerms t = LitTerms(n, light, half, fill, ao, shadow, rig);
       const uint32_t rgb = in.baseColor[i];
       r = c.srgbDecode[(rgb >> 16) & 0xFF] * t.k + t.s;
       g = c.srgbDecode[(rgb >> 8) & 0xFF] * t.k + t.s;

@@ -12,13 +12,17 @@
 
 namespace softmol::effects {
 
+struct ShadingOptions;
+
 struct ShadeConstants {
-  float lightX, lightY, lightZ;  // unit, eye space, towards the light
-  float halfX, halfY, halfZ;     // Blinn's half vector
-  float ambient, diffuse, specular;
-  int shininess;
-  float backdropR, backdropG, backdropB, backdropA;  // premultiplied
-  const float* srgbDecode;  // 256 entries (effects/color.h)
+  float lightX = 0, lightY = 0, lightZ = 1;  // key light: unit, eye space, towards the light
+  float halfX = 0, halfY = 0, halfZ = 1;     // Blinn's half vector
+  float fillX = 0, fillY = 0, fillZ = 1;     // fill light, unit
+  float ambient = 0, key = 0, fill = 0, specular = 0;
+  int shininess = 1;
+  float aoStrength = 1;
+  float backdropR = 0, backdropG = 0, backdropB = 0, backdropA = 0;  // premultiplied
+  const float* srgbDecode = nullptr;  // 256 entries (effects/color.h)
   // Compositing layers (used only where SampleRow has the matching plane), linear RGB.
   float lineR = 0, lineG = 0, lineB = 0;           // contour lines (Tarini §5.1)
   float outlineR = 0, outlineG = 0, outlineB = 0;  // Sobel outlines (Sigg §4)
@@ -50,6 +54,9 @@ struct ShadedRow {
   float* b;
   float* a;
 };
+
+// The light terms of `options` (effects/shading.h), the rest left at its defaults.
+ShadeConstants LightConstants(const ShadingOptions& options);
 
 void ShadeSampleRow(const ShadeConstants& c, const SampleRow& in, size_t count,
                     const ShadedRow& out) noexcept;

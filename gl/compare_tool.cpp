@@ -155,7 +155,6 @@ int main(int argc, char** argv) {
     // As `softmol render --highlight`: one flag per atom, which is one sphere per atom in the
     // per-atom styles.
     if (!a.highlight.empty()) options.highlight.spheres = io::Evaluate(io::ParseSelection(a.highlight), mol);
-    if (options.ao != effects::AoMode::kNone) options.shading = effects::AoShading();
     for (const effects::PlannedPass& p : effects::PlanPasses(options))
       if (!gl::Mirrors(p.id)) throw std::runtime_error(std::string("the pass '") + p.name + "' (" +
                                                        effects::Pass(p.id).enabledBy + ") is not mirrored in GL");

@@ -193,7 +193,7 @@ void GlShading(GlPassContext& c) {
   if (o.outlines) inputs.outline = c.m.outline;
   if (o.shadows) inputs.shadow = c.m.shadow;
   if (o.depthHalos) inputs.halo = c.m.depthHalo;
-  if (o.ao != effects::AoMode::kNone) inputs.ambientOcclusion = c.m.ao;
+  if (effects::AoSeen(o)) inputs.ambientOcclusion = c.m.ao;
   c.m.shading.Run(c.m.gbuffer, o.ssaa, o.shading, effects::Backdrop{o.background, o.transparent}, &inputs);
 }
 

@@ -48,16 +48,18 @@ void ShadingPass::Run(const GBufferTargets& g, int ssaa, const effects::ShadingO
     width = w;
     height = h;
   }
-  glm::vec3 light, half;
-  effects::LightVectors(options, light, half);
+  const effects::LightVectorSet v = effects::LightVectors(options);
   const GLuint p = program;
   glProgramUniform1fv(p, glGetUniformLocation(p, "uSrgbDecode"), 256, effects::SrgbDecodeTable());
-  glProgramUniform3f(p, glGetUniformLocation(p, "uLight"), light.x, light.y, light.z);
-  glProgramUniform3f(p, glGetUniformLocation(p, "uHalf"), half.x, half.y, half.z);
+  glProgramUniform3f(p, glGetUniformLocation(p, "uLight"), v.key.x, v.key.y, v.key.z);
+  glProgramUniform3f(p, glGetUniformLocation(p, "uHalf"), v.half.x, v.half.y, v.half.z);
+  glProgramUniform3f(p, glGetUniformLocation(p, "uFill"), v.fill.x, v.fill.y, v.fill.z);
   glProgramUniform1f(p, glGetUniformLocation(p, "uAmbient"), options.ambient);
-  glProgramUniform1f(p, glGetUniformLocation(p, "uDiffuse"), options.diffuse);
+  glProgramUniform1f(p, glGetUniformLocation(p, "uKey"), options.key);
+  glProgramUniform1f(p, glGetUniformLocation(p, "uFillIntensity"), options.fill);
   glProgramUniform1f(p, glGetUniformLocation(p, "uSpecular"), options.specular);
   glProgramUniform1i(p, glGetUniformLocation(p, "uShininess"), options.shininess);
+  glProgramUniform1f(p, glGetUniformLocation(p, "uAoStrength"), options.aoStrength);
   const bool t = backdrop.transparent;
   glProgramUniform4f(p, glGetUniformLocation(p, "uBackdrop"), t ? 0.0f : backdrop.color.x,
                      t ? 0.0f : backdrop.color.y, t ? 0.0f : backdrop.color.z, t ? 0.0f : 1.0f);

@@ -36,7 +36,8 @@ struct SchemeName {
   ColorScheme scheme;
 };
 constexpr SchemeName kSchemes[] = {
-    {"auto", ColorScheme::kAuto},       {"element", ColorScheme::kElement}, {"chain", ColorScheme::kChain},
+    {"auto", ColorScheme::kAuto},       {"element", ColorScheme::kElement}, {"cpk", ColorScheme::kCpk},
+    {"chain", ColorScheme::kChain},
     {"residue", ColorScheme::kResidue}, {"ss", ColorScheme::kSecondaryStructure},
     {"bfactor", ColorScheme::kBFactor}, {"uniform", ColorScheme::kUniform},
 };
@@ -54,10 +55,11 @@ ColorRule ParseScheme(std::string_view text, const io::SourceLocation& where) {
   const auto it = std::find_if(std::begin(kSchemes), std::end(kSchemes), [&](const SchemeName& s) { return s.name == name; });
   if (it == std::end(kSchemes))
     throw io::InputError(where, "unknown colour " + io::Quoted(text) +
-                                    " (a scheme: auto, element[:COLOR], chain, residue, ss, bfactor[:LO:HI], "
+                                    " (a scheme: auto, element[:COLOR], cpk[:COLOR], chain, residue, ss, bfactor[:LO:HI], "
                                     "uniform:COLOR; a colour: RRGGBB or a CSS name; or SELECTION=one of these)");
   rule.scheme = it->scheme;
-  if (rule.scheme == ColorScheme::kUniform || (rule.scheme == ColorScheme::kElement && !arg.empty())) {
+  const bool elementScheme = rule.scheme == ColorScheme::kElement || rule.scheme == ColorScheme::kCpk;
+  if (rule.scheme == ColorScheme::kUniform || (elementScheme && !arg.empty())) {
     if (arg.empty()) throw io::InputError(where, "uniform needs a colour: uniform:COLOR");
     rule.rgb = io::ParseColorValue(arg, where), rule.hasRgb = true;
   } else if (rule.scheme == ColorScheme::kBFactor && colon != std::string_view::npos) {
@@ -109,6 +111,23 @@ void SelectedRange(const io::Molecule& mol, const std::vector<uint8_t>& selected
 
 }  // namespace
 
+uint32_t SoftElementColor(uint8_t atomicNumber, uint32_t cpk) {
+  // Hand-picked for the elements of biomolecules (CPK hues at about 70% saturation, lighter, so
+  // AO and lines read on them); every other element: its CPK colour a quarter of the way to white.
+  switch (atomicNumber) {
+    case 1: return 0xE8E8E8;   // H
+    case 6: return kCarbonGrey;
+    case 7: return 0x7B93E8;   // N
+    case 8: return 0xE8695E;   // O
+    case 9: case 17: return 0x9ED67A;  // F, Cl
+    case 15: return 0xF0A860;  // P
+    case 16: return 0xEDD26A;  // S
+    case 35: return 0xC0806C;  // Br
+    case 53: return 0xA47FC0;  // I
+    default: return Mix(cpk, 0xFFFFFF, 0.25);
+  }
+}
+
 uint32_t ChainColor(size_t ordinal) {
   // Beyond the palette: a lighter round, a darker one, lighter still, darker still, then again.
   constexpr double kShade[] = {0.0, 0.4, -0.35, 0.65, -0.55};
@@ -145,7 +164,8 @@ std::string FormatColorRule(const ColorRule& rule) {
   if (rule.scheme == ColorScheme::kUniform) return s + io::FormatColor(rule.rgb);
   for (const SchemeName& n : kSchemes)
     if (n.scheme == rule.scheme) s += n.name;
-  if (rule.scheme == ColorScheme::kElement && rule.hasRgb) s += ":" + io::FormatColor(rule.rgb);
+  if ((rule.scheme == ColorScheme::kElement || rule.scheme == ColorScheme::kCpk) && rule.hasRgb)
+    s += ":" + io::FormatColor(rule.rgb);
   if (rule.scheme == ColorScheme::kBFactor && rule.hasRange)
     s += ":" + io::FormatReal(rule.lo) + ":" + io::FormatReal(rule.hi);
   return s;
@@ -166,9 +186,14 @@ void ApplyColorRule(const io::Molecule& mol, const ColorRule& rule, const std::v
     const io::Residue& residue = mol.residues[mol.residueIndex[i]];
     switch (rule.scheme) {
       case ColorScheme::kAuto:
-        colors[i] = !carbon ? mol.color[i] : (mol.flags[i] & io::kPolymer) ? ChainColor(chainOf(i)) : kCarbonGrey;
+        colors[i] = !carbon                       ? SoftElementColor(mol.element[i], mol.color[i])
+                    : (mol.flags[i] & io::kPolymer) ? ChainColor(chainOf(i))
+                                                    : kCarbonGrey;
         break;
-      case ColorScheme::kElement: colors[i] = carbon && rule.hasRgb ? rule.rgb : mol.color[i]; break;
+      case ColorScheme::kElement:
+        colors[i] = carbon && rule.hasRgb ? rule.rgb : SoftElementColor(mol.element[i], mol.color[i]);
+        break;
+      case ColorScheme::kCpk: colors[i] = carbon && rule.hasRgb ? rule.rgb : mol.color[i]; break;
       case ColorScheme::kChain: colors[i] = ChainColor(chainOf(i)); break;
       case ColorScheme::kResidue:
         if (nucleic[i]) colors[i] = kNucleic;

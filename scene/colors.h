@@ -3,7 +3,9 @@
 //
 //   auto              the default: element colours, with the carbons of polymer residues in
 //                     their chain's colour (as PyMOL's and Mol*'s defaults), other carbons grey
-//   element[:COLOR]   CPK/Jmol element colours; COLOR replaces the carbons' grey
+//   element[:COLOR]   softened element colours (QuteMol's pastel look: CPK hues, lighter and
+//                     less saturated); COLOR replaces the carbons' grey
+//   cpk[:COLOR]       the saturated CPK/Jmol element colours
 //   chain             a colour-blind-safe qualitative palette (Okabe & Ito 2008), one colour per
 //                     chain name in order of first appearance, cycling in lighter and darker
 //                     shades for more than seven chains
@@ -25,7 +27,7 @@
 
 namespace softmol::scene {
 
-enum class ColorScheme : uint8_t { kAuto, kElement, kChain, kResidue, kSecondaryStructure, kBFactor, kUniform };
+enum class ColorScheme : uint8_t { kAuto, kElement, kCpk, kChain, kResidue, kSecondaryStructure, kBFactor, kUniform };
 
 struct ColorRule {
   std::string selection;  // io/selection.h text; "" = every atom
@@ -49,11 +51,14 @@ void ApplyColorRule(const io::Molecule& molecule, const ColorRule& rule, const s
 
 // The fixed colours of the schemes (sRGB).
 namespace palette {
-constexpr uint32_t kCarbonGrey = 0x909090;  // Jmol's carbon: `auto` for carbons outside polymers
+constexpr uint32_t kCarbonGrey = 0xB0B0B0;  // `auto` and `element` for carbons outside polymers
 constexpr uint32_t kHydrophobic = 0xE8D8A8, kPolar = 0x66CCEE, kAcidic = 0xEE6677, kBasic = 0x4477AA,
                    kNucleic = 0xAA3377;                       // residue
 constexpr uint32_t kHelix = 0xE8575A, kSheet = 0xF2C14E, kCoil = 0xD0D0D0;  // ss
 }  // namespace palette
+
+// The softened colour of an element (`element`, `auto`) whose CPK/Jmol colour is `cpk`.
+uint32_t SoftElementColor(uint8_t atomicNumber, uint32_t cpk);
 
 // The chain palette's colour for the chain name that appeared `ordinal`-th (0-based).
 uint32_t ChainColor(size_t ordinal);

@@ -7,5 +7,4 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh release >&2
 build/release/cli/softmol info data/1tii.pdb
-build/release/cli/softmol render data/1tii.pdb -o example.png --size 1280x960 --ssaa 2 --ao baked \
-  --contours --contour-depth-aware --halos "$@"
+build/release/cli/softmol render data/1tii.pdb -o example.png --size 1280x960 --ssaa 2 --preset qutemol "$@"

@@ -9,7 +9,7 @@ namespace {
 void RunShading(FrameContext& c) {
   const RenderOptions& o = c.options;
   ShadeInputs in = MakeShadeInputs(o, c.scene, c.camera);
-  in.ambientOcclusion = c.res.ao;
+  if (AoSeen(o)) in.ambientOcclusion = c.res.ao;
   if (o.shadows) in.shadow = c.res.shadow;
   if (o.outlines) in.outline = c.res.outline;
   if (o.depthHalos) in.halo = c.res.depthHalo;
@@ -22,7 +22,7 @@ bool ColorWanted(const RenderOptions& o) { return o.color; }
 
 uint64_t ShadingReads(const RenderOptions& o) {
   uint64_t reads = kBufNormal | kBufBaseColor | kBufPrimitiveId;
-  if (o.ao != AoMode::kNone) reads |= kBufAo;
+  if (AoSeen(o)) reads |= kBufAo;
   if (o.shadows) reads |= kBufShadow;
   if (o.outlines) reads |= kBufOutline;
   if (o.depthHalos) reads |= kBufDepthHalo;
@@ -33,8 +33,21 @@ uint64_t ShadingReads(const RenderOptions& o) {
 }
 
 io::ParamTable<RenderOptions> ShadingParams() {
-  using io::RealParam, io::SwitchParam;
+  using io::IntParam, io::RealParam, io::SwitchParam;
   io::ParamTable<RenderOptions> t = {
+      RealParam<RenderOptions>("ao-strength", [](auto& o) -> auto& { return o.shading.aoStrength; }, {0.0, 1.0}, "",
+                               "How much AO darkens: the light is scaled by 1 - S*(1 - AO); 0 = AO has no effect",
+                               "light"),
+      RealParam<RenderOptions>("ambient", [](auto& o) -> auto& { return o.shading.ambient; }, {0.0, 2.0}, "",
+                               "Ambient light intensity", "light"),
+      RealParam<RenderOptions>("key-light", [](auto& o) -> auto& { return o.shading.key; }, {0.0, 2.0}, "",
+                               "Key light intensity (Lambert; casts --shadows and the highlights)", "light"),
+      RealParam<RenderOptions>("fill-light", [](auto& o) -> auto& { return o.shading.fill; }, {0.0, 2.0}, "",
+                               "Fill light intensity (Lambert, from the lower right)", "light"),
+      RealParam<RenderOptions>("specular", [](auto& o) -> auto& { return o.shading.specular; }, {0.0, 2.0}, "",
+                               "Highlight intensity of the key light", "light"),
+      IntParam<RenderOptions>("shininess", [](auto& o) -> auto& { return o.shading.shininess; }, 1, 1024, "",
+                              "Highlight exponent (Blinn-Phong)", "light"),
       ColorParam<RenderOptions>("background", [](auto& o) -> auto& { return o.background; }, "Background colour",
                                 "shading"),
       SwitchParam<RenderOptions>("transparent", [](auto& o) -> auto& { return o.transparent; },
@@ -48,7 +61,8 @@ io::ParamTable<RenderOptions> ShadingParams() {
       OptionalColorParam<RenderOptions>("fog-color", [](auto& o) -> auto& { return o.fogColor; },
                                         "Depth-cue colour (default: the background)", "shading"),
   };
-  t[3].implicitValue = "0.5";
+  for (io::Param<RenderOptions>& p : t)
+    if (p.name == "depth-cue") p.implicitValue = "0.5";
   return t;
 }
 

@@ -19,10 +19,13 @@ layout(binding = 8) uniform sampler2D tHalo;
 uniform float uSrgbDecode[256];
 uniform vec3 uLight;
 uniform vec3 uHalf;
+uniform vec3 uFill;
 uniform float uAmbient;
-uniform float uDiffuse;
+uniform float uKey;
+uniform float uFillIntensity;
 uniform float uSpecular;
 uniform int uShininess;
+uniform float uAoStrength;
 uniform vec4 uBackdrop;  // premultiplied
 uniform int uSsaa;
 uniform float uInvSamples;  // 1/ssaa², computed in C++ as the CPU does
@@ -57,6 +60,17 @@ void main() {
     halfVector.x = uHalf.x;
     halfVector.y = uHalf.y;
     halfVector.z = uHalf.z;
+    Float3 fill;
+    fill.x = uFill.x;
+    fill.y = uFill.y;
+    fill.z = uFill.z;
+    LightRig rig;
+    rig.ambient = uAmbient;
+    rig.key = uKey;
+    rig.fill = uFillIntensity;
+    rig.specular = uSpecular;
+    rig.shininess = uShininess;
+    rig.aoStrength = uAoStrength;
     precise float sumR = 0.0f;
     precise float sumG = 0.0f;
     precise float sumB = 0.0f;
@@ -88,14 +102,8 @@ void main() {
                 if (uClipLighten != 0) {
                     ao = NearPlaneLighten(ao, texelFetch(tDepth, s, 0).x, uClipNear, uClipInvLighten);
                 }
-                LightingTerms t;
-                if (uHaveShadow != 0) {
-                    t = ShadowedBlinnPhongTerms(n, light, halfVector, ao, texelFetch(tShadow, s, 0).x,
-                                                uAmbient, uDiffuse, uSpecular, uShininess);
-                } else {
-                    t = BlinnPhongTerms(n, light, halfVector, ao, uAmbient, uDiffuse, uSpecular,
-                                        uShininess);
-                }
+                float shadow = uHaveShadow != 0 ? texelFetch(tShadow, s, 0).x : 1.0f;
+                LightingTerms t = LitTerms(n, light, halfVector, fill, ao, shadow, rig);
                 uint rgb = texelFetch(tBaseColor, s, 0).x;
                 r = uSrgbDecode[(rgb >> 16u) & 255u] * t.k + t.s;
                 g = uSrgbDecode[(rgb >> 8u) & 255u] * t.k + t.s;

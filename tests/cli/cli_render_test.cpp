@@ -141,7 +141,7 @@ TEST(CliRender, ProfileShowsWhatEachPassReadsAndWrites) {
   const auto dir = ScratchDir("render_profile_effects");
   const std::string trace = (dir / "trace.json").string();
   const CommandResult r = RunSoftmol("render " + kPept + " -o '" + (dir / "p.png").string() +
-                                         "' --size 64x48 --shadows --shadow-map 256 --profile '" + trace + "'",
+                                         "' --size 64x48 --ao none --shadows --shadow-map 256 --profile '" + trace + "'",
                                      dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const auto j = nlohmann::json::parse(Slurp(trace));

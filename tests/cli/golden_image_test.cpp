@@ -43,14 +43,12 @@ void BakedAoHalosCue(effects::RenderOptions& o, const raster::Camera&) {
   o.ao = effects::AoMode::kBaked;
   o.bake.directions = 64;
   o.bake.shadowMapSize = 256;
-  o.shading = effects::AoShading();
   o.depthHalos = true;
   o.depthCue = 0.4f;
 }
 void ClippedConeAoContours(effects::RenderOptions& o, const raster::Camera& cam) {
   o.ao = effects::AoMode::kCone;
   o.cone.cones = 5;
-  o.shading = effects::AoShading();
   o.nearClip = float(0.5 * (cam.nearPlane + cam.farPlane));  // through the middle of the molecule
   o.contourWidth = 0.25f;
 }

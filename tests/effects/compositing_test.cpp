@@ -82,8 +82,8 @@ TEST(Compositing, EveryStepInTheDocumentedOrder) {
   const std::vector<float> got = Shade(g, in);
 
   const ShadingOptions o;
-  glm::vec3 l, h;
-  LightVectors(o, l, h);
+  const LightVectorSet v = LightVectors(o);
+  const glm::vec3 l = v.key, h = v.half, f = v.fill;
   const LinearRgb base = UnpackSrgb(0x8040C0u);
   for (int x = 0; x < n; ++x) {
     const glm::vec3 nrm(0.36f, 0.48f, 0.8f);
@@ -93,8 +93,10 @@ TEST(Compositing, EveryStepInTheDocumentedOrder) {
     const float nl = (nrm.x * l.x + nrm.y * l.y) + nrm.z * l.z;
     const float nh = (nrm.x * h.x + nrm.y * h.y) + nrm.z * h.z;
     const float hl = shared::IntegerPower(nh, o.shininess);
-    const float k = o.ambient * a + o.diffuse * (s * nl);
-    const float sp = o.specular * (s * hl);
+    const float nf = (nrm.x * f.x + nrm.y * f.y) + nrm.z * f.z;
+    const float visibility = 1.0f - o.aoStrength * (1.0f - a);
+    const float k = visibility * ((o.ambient + o.fill * std::max(nf, 0.0f)) + o.key * (s * nl));
+    const float sp = visibility * (o.specular * (s * hl));
     float c[3] = {base.r * k + sp, base.g * k + sp, base.b * k + sp};
     const float lineC[3] = {0.1f, 0.2f, 0.3f}, outC[3] = {0.0f, 0.5f, 0.0f}, haloC[3] = {1.0f, 1.0f, 0.5f},
                 fogC[3] = {0.6f, 0.7f, 0.9f};

@@ -50,10 +50,11 @@ TEST_P(ShadingTwins, SimdMatchesScalarBitForBit) {
     for (bool withAo : {false, true}) {
       ShadingOptions o;
       o.shininess = shininess;
-      glm::vec3 light, half;
-      LightVectors(o, light, half);
-      const ShadeConstants c{light.x, light.y, light.z, half.x, half.y, half.z, o.ambient, o.diffuse,
-                             o.specular, o.shininess, 0.2f, 0.3f, 0.4f, 1.0f, SrgbDecodeTable()};
+      o.fill = 0.25f;
+      o.aoStrength = shininess == 77 ? 0.6f : 1.0f;
+      ShadeConstants c = LightConstants(o);
+      c.backdropR = 0.2f, c.backdropG = 0.3f, c.backdropB = 0.4f, c.backdropA = 1.0f;
+      c.srgbDecode = SrgbDecodeTable();
       const SampleRow in{nx.data(), ny.data(), nz.data(), color.data(), id.data(), withAo ? ao.data() : nullptr};
       std::vector<float> simd(4 * n, -1.0f), scalar(4 * n, -2.0f);
       ShadeSampleRow(c, in, n, ShadedRow{&simd[0], &simd[n], &simd[2 * n], &simd[3 * n]});
@@ -89,10 +90,10 @@ TEST_P(ShadingTwins, CompositingInputsMatchScalarBitForBit) {
     depth[i] = background ? std::numeric_limits<float>::infinity() : 40.0f + 40.0f * unit(rng);
   }
   ShadingOptions o;
-  glm::vec3 light, half;
-  LightVectors(o, light, half);
-  ShadeConstants c{light.x, light.y, light.z, half.x, half.y, half.z, o.ambient, o.diffuse, o.specular,
-                   o.shininess, 0.0f, 0.0f, 0.0f, 0.0f, SrgbDecodeTable()};
+  o.fill = 0.3f;
+  o.aoStrength = 0.7f;
+  ShadeConstants c = LightConstants(o);
+  c.srgbDecode = SrgbDecodeTable();
   c.lineR = 0.1f, c.lineG = 0.0f, c.lineB = 0.2f;
   c.outlineR = 0.0f, c.outlineG = 0.3f, c.outlineB = 0.0f;
   c.haloR = 1.0f, c.haloG = 0.9f, c.haloB = 0.8f;
@@ -123,16 +124,17 @@ TEST_P(ShadingTwins, CompositingInputsMatchScalarBitForBit) {
 
 TEST(ShadingKernel, ScalarTwinIsTheShadePixelFormula) {
   ShadingOptions o;
-  glm::vec3 light, half;
-  LightVectors(o, light, half);
-  const float nx = 0.3f, ny = 0.4f, nz = std::sqrt(1.0f - 0.25f);
+  o.fill = 0.2f;
+  o.aoStrength = 0.8f;
+  const float nx = 0.3f, ny = -0.4f, nz = std::sqrt(1.0f - 0.25f);
+  const float ao = 0.375f;
   const uint32_t color = 0x3366CC, id = 5;
-  const ShadeConstants c{light.x, light.y, light.z, half.x, half.y, half.z, o.ambient, o.diffuse,
-                         o.specular, o.shininess, 0, 0, 0, 0, SrgbDecodeTable()};
+  ShadeConstants c = LightConstants(o);
+  c.srgbDecode = SrgbDecodeTable();
   float r, g, b, a;
-  ShadeSampleRowScalar(c, SampleRow{&nx, &ny, &nz, &color, &id, nullptr}, 1, ShadedRow{&r, &g, &b, &a});
+  ShadeSampleRowScalar(c, SampleRow{&nx, &ny, &nz, &color, &id, &ao}, 1, ShadedRow{&r, &g, &b, &a});
   const LinearRgb base = UnpackSrgb(color);
-  const glm::vec3 want = ShadePixel({nx, ny, nz}, {base.r, base.g, base.b}, 1.0f, light, half, o);
+  const glm::vec3 want = ShadePixel({nx, ny, nz}, {base.r, base.g, base.b}, ao, o);
   EXPECT_EQ(Bits(r), Bits(want.x));
   EXPECT_EQ(Bits(g), Bits(want.y));
   EXPECT_EQ(Bits(b), Bits(want.z));

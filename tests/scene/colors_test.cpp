@@ -6,11 +6,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <map>
 #include <set>
 
 #include "effects/frame_renderer.h"
 #include "io/color_names.h"
+#include "io/elements.h"
 #include "io/params.h"
 #include "io/selection.h"
 #include "io/structure_reader.h"
@@ -69,7 +72,7 @@ TEST(ColorSchemes, AutoColoursPolymerCarbonsByChainAndTheRestByElement) {
   std::map<std::string, uint32_t> chainCarbon;
   for (size_t i = 0; i < m.atomCount(); ++i) {
     if (m.element[i] != 6) {
-      EXPECT_EQ(c[i], m.color[i]) << i;
+      EXPECT_EQ(c[i], SoftElementColor(m.element[i], m.color[i])) << i;
     } else if (m.flags[i] & io::kPolymer) {
       const auto [it, fresh] = chainCarbon.emplace(ChainOf(m, i), c[i]);
       EXPECT_EQ(it->second, c[i]) << "one colour per chain";
@@ -117,6 +120,7 @@ TEST(ColorSchemes, SecondaryStructureAndElementCarbons) {
   const io::Molecule& m = Tii();  // HELIX/SHEET records (io/secondary_structure.h)
   const std::vector<uint32_t> ss = AtomColors(m, {ParseColorRule("ss", {"t"})});
   const std::vector<uint32_t> green = AtomColors(m, {ParseColorRule("element:green", {"t"})});
+  const std::vector<uint32_t> cpk = AtomColors(m, {ParseColorRule("cpk", {"t"})});
   const std::vector<uint32_t> base = AtomColors(m, {});
   size_t helix = 0, sheet = 0;
   for (size_t i = 0; i < m.atomCount(); ++i) {
@@ -129,10 +133,23 @@ TEST(ColorSchemes, SecondaryStructureAndElementCarbons) {
                                                              : palette::kCoil);
       helix += k == io::SecondaryStructure::kHelix, sheet += k == io::SecondaryStructure::kSheet;
     }
-    EXPECT_EQ(green[i], m.element[i] == 6 ? 0x008000u : m.color[i]);
+    EXPECT_EQ(green[i], m.element[i] == 6 ? 0x008000u : SoftElementColor(m.element[i], m.color[i]));
+    EXPECT_EQ(cpk[i], m.color[i]);
   }
   EXPECT_GT(helix, 500u);
   EXPECT_GT(sheet, 500u);
+}
+
+TEST(ColorSchemes, SoftElementColoursAreLighterAndLessSaturatedThanCpk) {
+  const auto channels = [](uint32_t c) { return std::array<int, 3>{int(c >> 16 & 255), int(c >> 8 & 255), int(c & 255)}; };
+  for (uint8_t z : {uint8_t(7), uint8_t(8), uint8_t(15), uint8_t(16), uint8_t(26), uint8_t(30)}) {
+    const uint32_t cpk = io::Element(z).color, soft = SoftElementColor(z, cpk);
+    const auto a = channels(cpk), b = channels(soft);
+    const int spreadA = *std::max_element(a.begin(), a.end()) - *std::min_element(a.begin(), a.end());
+    const int spreadB = *std::max_element(b.begin(), b.end()) - *std::min_element(b.begin(), b.end());
+    EXPECT_LT(spreadB, spreadA) << "less saturated, element " << int(z);
+    EXPECT_GE(b[0] + b[1] + b[2], a[0] + a[1] + a[2] - 40) << "not darker, element " << int(z);
+  }
 }
 
 TEST(ColorSchemes, ChainPaletteCyclesDistinctly) {
