@@ -31,7 +31,7 @@ int RunInfo(const InfoArgs& args);
 // `softmol render`: what the command itself reads (files, framing, the job); everything the
 // passes read is `options`, declared by the passes (effects/pass_list.h RenderParams).
 struct RenderArgs {
-  std::string molecule;     // the argument, or the scene's "molecule"
+  std::vector<std::string> molecules;  // the arguments, or the scene's "molecule"
   std::string scene;        // --scene scene.json; flags override it
   std::string output;       // "": the molecule's stem in the working directory (1tii.png)
   std::string size = "1024x768";
@@ -43,6 +43,9 @@ struct RenderArgs {
   std::string profile;      // Chrome trace-event JSON
   std::string trajectory;   // render its frames instead of the topology's coordinates
   std::string frames;       // A:B[:STEP], 0-based, inclusive; default all
+  bool numberByFrame = false;  // %05d in -o: the trajectory frame index instead of 0, 1, 2, ...
+  std::string turntable;    // N[:x|y|z] (cli/render_jobs.h)
+  std::string shard;        // I/N (cli/render_jobs.h)
   std::string highlight;    // selection to surround with a halo (Hermosilla §6.1)
   std::string backend = "cpu";  // cpu | gl (the OpenGL mirror; builds with SOFTMOL_BUILD_GL)
   std::string view;         // scene/view.h text: the whole camera
@@ -71,7 +74,8 @@ class RenderCommand {
 
  private:
   CLI::App* command_ = nullptr;
-  std::string molecule_, scene_;
+  std::vector<std::string> molecules_;
+  std::string scene_;
   CommandParams<RenderArgs> params_;
 };
 int RunRender(const RenderArgs& args);

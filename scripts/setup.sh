@@ -11,6 +11,7 @@ packages=(
   libhwy-dev libcli11-dev nlohmann-json3-dev zlib1g-dev libpng-dev
   clang libclang-rt-14-dev   # libFuzzer targets (scripts/fuzz.sh)
   libegl-dev libopengl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri glslang-tools  # gl/ mirror (llvmpipe)
+  parallel   # GNU parallel: the shard test (tests/cli/cli_batch_test.cpp) runs the README's one-liner
 )
 
 missing=()
