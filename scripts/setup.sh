@@ -12,6 +12,7 @@ packages=(
   clang libclang-rt-14-dev   # libFuzzer targets (scripts/fuzz.sh)
   libegl-dev libopengl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri glslang-tools  # gl/ mirror (llvmpipe)
   parallel   # GNU parallel: the shard test (tests/cli/cli_batch_test.cpp) runs the README's one-liner
+  slurmctld slurmd slurm-client   # a one-node Slurm cluster for the job-array test (tests/cli/cli_slurm_test.cpp)
 )
 
 missing=()
