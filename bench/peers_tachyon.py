@@ -15,7 +15,6 @@ Python 3 standard library only. Exit 77 (ctest's skip) when tachyon is not insta
 """
 import argparse
 import os
-import platform
 import re
 import shutil
 import statistics
@@ -134,7 +133,7 @@ def machine():
         if line.startswith("model name"):
             model = line.split(":", 1)[1].strip()
             break
-    return "%s, nproc %d, %s" % (model, os.cpu_count(), platform.platform())
+    return "%s, nproc %d" % (model, os.cpu_count())
 
 
 def load():
@@ -177,22 +176,26 @@ def run(args):
         if not args.keep:
             shutil.rmtree(work)
         return 0 if iou >= 0.9 else 1
-    rows = []
+    rows, shared = [], set()
     for i, case in enumerate(cases):
         s = results[("softmol", i)]
         t = results[("tachyon", (case[1], case[2], case[3], case[5]))]
         sw, tw = median([x[0] for x in s]), median([x[0] for x in t])
         frame = [float(m.group(1)) for x in s for m in [re.search(r"frame: ([0-9.]+) ms", x[2])] if m]
         ray = [float(m.group(1)) for x in t for m in [re.search(r"Ray Tracing Time:\s+([0-9.]+)", x[2])] if m]
-        rows.append("| %s | %.3f s (frame %s), %.0f MiB | %.3f s (ray tracing %s), %.0f MiB | %.1f× |" % (
+        key = (case[1], case[2], case[3], case[5])
+        same = " (the run above)" if key in shared else ""
+        shared.add(key)
+        rows.append("| %s | %.3f s (frame %s), %.0f MiB | %.3f s (ray tracing %s), %.0f MiB%s | %.1f× |" % (
             case[0], sw, "%.0f ms" % median(frame) if frame else "?", median([x[1] for x in s]), tw,
-            "%.2f s" % median(ray) if ray else "?", median([x[1] for x in t]), tw / sw))
-    flags = " ".join(a for a in sys.argv[1:])
+            "%.2f s" % median(ray) if ray else "?", median([x[1] for x in t]), same, tw / sw))
+    version = re.search(r"Version (\S+)", results[("tachyon", key)][0][2])
+    flags = "" if args.runs == 5 else " --runs %d" % args.runs  # the command that makes this table
     text = "\n".join([
         BEGIN,
         "## Whole processes beside Tachyon (issue 17)",
         "",
-        "`bench/peers_tachyon.py %s` on %s, %s (%s)." % (flags, time.strftime("%Y-%m-%d"), machine(),
+        "`bench/peers_tachyon.py%s` on %s, %s (%s)." % (flags, time.strftime("%Y-%m-%d"), machine(),
                                                       subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"],
                                                                      capture_output=True, text=True).stdout.strip()),
         "Load average before %s, after %s%s." % (load_before, load_after,
@@ -200,14 +203,14 @@ def run(args):
                                                  if max(os.getloadavg()) > 0.5 * os.cpu_count() else ""),
         "Each process timed %d times, softmol and Tachyon runs interleaved; medians of wall clock and max RSS"
         % args.runs,
-        "(`os.wait4`, what `/usr/bin/time -f '%e %M'` reports). softmol: `softmol render MOLECULE --size WxH"
-        " FLAGS -o x.png`, all cores; its own `frame:` line in brackets. Tachyon 0.99b6:"
+        "(`os.wait4`, what `/usr/bin/time -f '%%e %%M'` reports). softmol: `softmol render MOLECULE --size WxH"
+        " FLAGS -o x.png`, all cores; its own `frame:` line in brackets. Tachyon %s (Debian's `tachyon`):"
         " `tachyon scene.dat -aasamples 0 -fullshade -format PNG -o x.png`, all cores, one ray per pixel,"
         " shadows from one directional light along softmol's, and for the AO rows Tachyon's ambient occlusion"
         " with 16 sample rays (softmol's cone AO traces 9 cones; its baked AO 128 directions once per process);"
         " the scene (`bench/tachyon_scene`: softmol's own spheres, radii, colours and `--print-view` camera) is"
         " written before the timing, so Tachyon's process reads a ready scene file while softmol's reads the PDB."
-        " Tachyon's \"Ray Tracing Time\" in brackets.",
+        " Tachyon's \"Ray Tracing Time\" in brackets." % (version.group(1) if version else "?"),
         "",
         "| work | softmol | Tachyon | Tachyon / softmol |",
         "|---|---|---|---|",
