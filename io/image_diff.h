@@ -20,8 +20,9 @@ struct DiffImage {
   bool eightBit = false;
 };
 
-// A PNG through libpng (never loads the OpenImageIO module); anything else (EXR) through
-// ReadExr. Throws InputError naming `path` when it cannot be read.
+// A PNG through libpng (never loads the OpenImageIO module; 16-bit PNGs compare at 8 bits, as
+// ReadImage8 strips them); anything else (EXR) through ReadExr. Throws InputError naming `path`
+// when it cannot be read.
 DiffImage ReadDiffImage(const std::string& path);
 // An 8-bit image as channels Y, YA, RGB or RGBA (1 to 4 channels).
 DiffImage FromImage8(const Image8& image);
