@@ -1,4 +1,4 @@
-// cli/commands.h — the subcommands of `softmol`: each declares its options on a CLI11 app
+// cli/commands.h — the subcommands of `softmol` (info, render, bake, diff): each declares its options on a CLI11 app
 // (Add*Command, or a command object whose options come from parameter declarations,
 // io/params.h) and runs from the parsed values (Run*). Errors are thrown as io::InputError
 // naming the file or option; main.cpp reports them.
@@ -12,6 +12,7 @@
 #include "cli/bake_options.h"
 #include "cli/command_params.h"
 #include "effects/frame_renderer.h"
+#include "io/image_diff.h"
 #include "raster/representation.h"
 #include "scene/layers.h"
 
@@ -101,5 +102,27 @@ class BakeCommand {
   CommandParams<BakeFlags> params_;
 };
 int RunBake(const BakeArgs& args);
+
+// `softmol diff EXPECTED ACTUAL`: compares decoded pixels (io/image_diff.h), prints one summary
+// line and returns 0 (same within the tolerance) or 1 (different), like cmp; what cannot be
+// compared is an io::InputError (exit 2).
+struct DiffArgs {
+  std::string expected, actual;
+  std::string output;  // -o diff.png: where they differ, as a picture
+  io::DiffOptions diff;
+};
+io::ParamTable<DiffArgs> DiffParams();
+class DiffCommand {
+ public:
+  explicit DiffCommand(CLI::App& app);
+  DiffArgs Args();  // after parsing; throws io::InputError for a bad value
+  CLI::App* app() const { return command_; }
+
+ private:
+  CLI::App* command_ = nullptr;
+  std::string expected_, actual_;
+  CommandParams<DiffArgs> params_;
+};
+int RunDiff(const DiffArgs& args);
 
 }  // namespace softmol::cli
