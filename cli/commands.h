@@ -1,4 +1,4 @@
-// cli/commands.h — the subcommands of `softmol`: each declares its options on a CLI11 app
+// cli/commands.h — the subcommands of `softmol` (info, render, bake, diff): each declares its options on a CLI11 app
 // (Add*Command, or a command object whose options come from parameter declarations,
 // io/params.h) and runs from the parsed values (Run*). Errors are thrown as io::InputError
 // naming the file or option; main.cpp reports them.
@@ -12,6 +12,7 @@
 #include "cli/bake_options.h"
 #include "cli/command_params.h"
 #include "effects/frame_renderer.h"
+#include "io/image_diff.h"
 #include "raster/representation.h"
 #include "scene/layers.h"
 
@@ -31,7 +32,7 @@ int RunInfo(const InfoArgs& args);
 // `softmol render`: what the command itself reads (files, framing, the job); everything the
 // passes read is `options`, declared by the passes (effects/pass_list.h RenderParams).
 struct RenderArgs {
-  std::string molecule;     // the argument, or the scene's "molecule"
+  std::vector<std::string> molecules;  // the arguments, or the scene's "molecule"
   std::string scene;        // --scene scene.json; flags override it
   std::string output;       // "": the molecule's stem in the working directory (1tii.png)
   std::string size = "1024x768";
@@ -43,6 +44,9 @@ struct RenderArgs {
   std::string profile;      // Chrome trace-event JSON
   std::string trajectory;   // render its frames instead of the topology's coordinates
   std::string frames;       // A:B[:STEP], 0-based, inclusive; default all
+  bool numberByFrame = false;  // %05d in -o: the trajectory frame index instead of 0, 1, 2, ...
+  std::string turntable;    // N[:x|y|z] (cli/render_jobs.h)
+  std::string shard;        // I/N (cli/render_jobs.h)
   std::string highlight;    // selection to surround with a halo (Hermosilla §6.1)
   bool highlightFromPreset = false;  // a preset's highlight: selecting nothing is not an error
   std::string preset;       // --preset NAME (cli/presets.h), applied under the flags and scene
@@ -79,7 +83,8 @@ class RenderCommand {
 
  private:
   CLI::App* command_ = nullptr;
-  std::string molecule_, scene_;
+  std::vector<std::string> molecules_;
+  std::string scene_;
   CommandParams<RenderArgs> params_;
 };
 int RunRender(const RenderArgs& args);
@@ -105,5 +110,27 @@ class BakeCommand {
   CommandParams<BakeFlags> params_;
 };
 int RunBake(const BakeArgs& args);
+
+// `softmol diff EXPECTED ACTUAL`: compares decoded pixels (io/image_diff.h), prints one summary
+// line and returns 0 (same within the tolerance) or 1 (different), like cmp; what cannot be
+// compared is an io::InputError (exit 2).
+struct DiffArgs {
+  std::string expected, actual;
+  std::string output;  // -o diff.png: where they differ, as a picture
+  io::DiffOptions diff;
+};
+io::ParamTable<DiffArgs> DiffParams();
+class DiffCommand {
+ public:
+  explicit DiffCommand(CLI::App& app);
+  DiffArgs Args();  // after parsing; throws io::InputError for a bad value
+  CLI::App* app() const { return command_; }
+
+ private:
+  CLI::App* command_ = nullptr;
+  std::string expected_, actual_;
+  CommandParams<DiffArgs> params_;
+};
+int RunDiff(const DiffArgs& args);
 
 }  // namespace softmol::cli

@@ -21,7 +21,7 @@ namespace {
 using namespace softmol;
 
 constexpr const char* kFooter =
-    "Exit codes: 0 success; 2 bad input (a file, record, option or scene key: the message names "
+    "Exit codes: 0 success; 1 `softmol diff`: the images differ; 2 bad input (a file, record, option or scene key: the message names "
     "it); 3 internal error (not the input's fault); 4 out of memory.\n"
     "SIMD: --simd TARGET (before or after the subcommand) or the environment variable "
     "SOFTMOL_SIMD forces the target of every SIMD kernel (--simd wins); outputs are the same "
@@ -50,7 +50,7 @@ std::string ParseErrorMessage(const CLI::App& app, const CLI::ParseError& e) {
 }
 
 int Run(CLI::App& app, int argc, char** argv, cli::InfoArgs& info, cli::RenderCommand& render,
-        cli::BakeCommand& bake) {
+        cli::BakeCommand& bake, cli::DiffCommand& diff) {
   if (const char* env = std::getenv("SOFTMOL_SIMD"); env && *env)
     raster::ForceSimdTarget(env, "SOFTMOL_SIMD");
   try {
@@ -63,6 +63,7 @@ int Run(CLI::App& app, int argc, char** argv, cli::InfoArgs& info, cli::RenderCo
   if (app.got_subcommand("info")) return cli::RunInfo(info);
   if (app.got_subcommand("render")) return cli::RunRender(render.Args());
   if (app.got_subcommand("bake")) return cli::RunBake(bake.Args());
+  if (app.got_subcommand("diff")) return cli::RunDiff(diff.Args());
   return io::kExitBadInput;
 }
 
@@ -83,7 +84,8 @@ int main(int argc, char** argv) {
     cli::AddInfoCommand(app, info);
     cli::RenderCommand render(app);
     cli::BakeCommand bake(app);
-    return Run(app, argc, argv, info, render, bake);
+    cli::DiffCommand diff(app);
+    return Run(app, argc, argv, info, render, bake, diff);
   } catch (const io::InputError& e) {
     std::fprintf(stderr, "softmol: %s\n", e.what());
     return io::kExitBadInput;

@@ -1,6 +1,8 @@
-// cli/render_command.cpp — `softmol render MOLECULE -o out.png|out.exr`: loads the molecule,
-// builds the representation, frames the camera, renders through effects::RenderFrame and
-// writes the image (and AOVs), optionally timing every pass into a Chrome trace.
+// cli/render_command.cpp — `softmol render MOLECULE... -o out.png|out.exr`: for each input,
+// loads the molecule, builds the representation, frames the camera, renders its frames (one
+// still, trajectory frames or turntable angles; those of this --shard) through the run's one
+// renderer (cli/frame_sink.h) and writes the images (and AOVs), optionally timing every pass
+// into a Chrome trace. A bad input is reported and skipped; the run then exits 2.
 #include <charconv>
 #include <cstdio>
 #include <cstdlib>
@@ -15,10 +17,11 @@
 #include <tbb/global_control.h>
 
 #include "cli/commands.h"
+#include "cli/frame_sink.h"
 #include "cli/load_molecule.h"
 #include "cli/parse.h"
 #include "cli/presets.h"
-#include "cli/profile_trace.h"
+#include "cli/render_jobs.h"
 #include "common/timer.h"
 #include "effects/color.h"
 #include "effects/frame_renderer.h"
@@ -33,28 +36,11 @@
 #include "scene/layers.h"
 #include "scene/view.h"
 #if SOFTMOL_HAVE_GL
-#include "gl/context_egl.h"
 #include "gl/frame_renderer.h"
 #endif
 
 namespace softmol::cli {
 namespace {
-
-enum class OutputKind { kPng, kExr };
-
-OutputKind OutputKindOf(const std::string& path, const io::SourceLocation& where = {"-o"}) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  if (ext == ".png") return OutputKind::kPng;
-  if (ext == ".exr") return OutputKind::kExr;
-  throw io::InputError(where, "output must end in .png or .exr, got '" + path + "'");
-}
-
-// NAME.png -> NAME.aov.exr, beside it.
-std::string SiblingAovPath(const std::string& png) {
-  std::filesystem::path p(png);
-  return (p.parent_path() / (p.stem().string() + ".aov.exr")).string();
-}
 
 // A repeatable layer option (--show, --hide): both append to one list of layers, in the order
 // given; the scene file's "layers" holds objects {"select", "style", "color"} or "SEL=STYLE".
@@ -95,7 +81,8 @@ io::ParamTable<RenderArgs> JobParams() {
   };
   io::ParamTable<RenderArgs> t = {
       TextParam<RenderArgs>("output", [](auto& a) -> auto& { return a.output; }, "FILE.png|FILE.exr",
-                            "Output image: .png (sRGB 8-bit) or .exr (linear float + AOVs)", "output",
+                            "Output image: .png (sRGB 8-bit) or .exr (linear float + AOVs); {stem} and {index} "
+                            "name each input's image (out/{stem}.png), %05d numbers frames", "output",
                             [](std::string_view text, const io::SourceLocation& where) {
                               (void)OutputKindOf(std::string(text), where);
                             }),
@@ -136,6 +123,10 @@ io::ParamTable<RenderArgs> JobParams() {
       TextParam<RenderArgs>("frames", [](auto& a) -> auto& { return a.frames; }, "A:B[:STEP]",
                             "Trajectory frames (0-based, inclusive; default all); -o needs %d or %05d for several",
                             "molecule"),
+      ChoiceParam<RenderArgs>("frame-numbers", [](auto& a) -> auto& { return a.numberByFrame; },
+                              std::vector<std::pair<std::string, bool>>{{"sequence", false}, {"frame", true}},
+                              "What %05d in -o counts: sequence numbers the images 0, 1, 2, ... (what ffmpeg reads); "
+                              "frame uses the trajectory frame index (md_00010.png for frame 10)", "output"),
       TextParam<RenderArgs>("highlight", [](auto& a) -> auto& { return a.highlight; }, "SELECTION",
                             "Surround this selection (e.g. ligand, \"resn RET\", chain B) with an object-space halo",
                             "halos"),
@@ -160,6 +151,11 @@ io::ParamTable<RenderArgs> JobParams() {
                             "(positive tips the top away), then Y about its vertical axis (positive turns the "
                             "right side away), then Z about the view axis (positive is counter-clockwise)",
                             "camera", numbers(3)),
+      TextParam<RenderArgs>("turntable", [](auto& a) -> auto& { return a.turntable; }, "N[:x|y|z]",
+                            "N frames turning the molecule a full turn about the view's vertical axis (or x: its "
+                            "horizontal axis, z: the view axis); frame k is --rotate's k*360/N about that axis, "
+                            "after --rotate; the AO bake is done once; -o needs %05d", "camera",
+                            [](std::string_view text, const io::SourceLocation& where) { (void)ParseTurntable(text, where); }),
       RealParam<RenderArgs>("zoom", [](auto& a) -> auto& { return a.zoom; }, {1e-3, 1e3}, "",
                             "Zoom factor (> 1 moves closer)", "camera"),
       RealParam<RenderArgs>("near", [](auto& a) -> auto& { return a.nearPlane; }, {0.0, 1e9}, "Å",
@@ -173,6 +169,10 @@ io::ParamTable<RenderArgs> JobParams() {
                            "Worker threads (0: all cores)", "job"),
       IntParam<RenderArgs>("repeat", [](auto& a) -> auto& { return a.repeat; }, 1, 100000, "",
                            "Render the frame N times (steady-state timings)", "job"),
+      TextParam<RenderArgs>("shard", [](auto& a) -> auto& { return a.shard; }, "I/N",
+                            "Render only every N-th image of the run (frames of all inputs in order), starting at "
+                            "I (0-based), with the run's own names: N shards write exactly the files of one run",
+                            "job", [](std::string_view text, const io::SourceLocation& where) { (void)ParseShard(text, where); }),
       TextParam<RenderArgs>("profile", [](auto& a) -> auto& { return a.profile; }, "FILE.json",
                             "Write per-pass timings as Chrome trace-event JSON (open in Perfetto)", "job"),
       SwitchParam<RenderArgs>("quiet", [](auto& a) -> auto& { return a.quiet; }, "Print nothing on success", "job"),
@@ -183,30 +183,6 @@ io::ParamTable<RenderArgs> JobParams() {
     if (p.name == "trajectory") p.isPath = true;
   }
   return t;
-}
-
-io::ImageFile ToExr(const effects::RenderedFrame& f, bool withColor) {
-  io::ImageFile img;
-  img.width = f.width;
-  img.height = f.height;
-  const size_t n = size_t(f.width) * size_t(f.height);
-  if (withColor) {
-    const char* names[4] = {"R", "G", "B", "A"};
-    for (size_t c = 0; c < 4; ++c) {
-      io::ImageChannel ch{names[c], std::vector<float>(n), {}};
-      for (size_t i = 0; i < n; ++i) ch.values[i] = f.rgba[4 * i + c];
-      img.channels.push_back(std::move(ch));
-    }
-  }
-  if (!f.depth.empty()) img.channels.push_back({"Z", f.depth, {}});
-  if (!f.normalX.empty()) {
-    img.channels.push_back({"N.x", f.normalX, {}});
-    img.channels.push_back({"N.y", f.normalY, {}});
-    img.channels.push_back({"N.z", f.normalZ, {}});
-  }
-  if (!f.id.empty()) img.channels.push_back({"id", {}, f.id});
-  if (!f.ao.empty()) img.channels.push_back({"AO", f.ao, {}});
-  return img;
 }
 
 }  // namespace
@@ -237,7 +213,10 @@ void ApplyBundles(ParamInputs& inputs) {
 
 RenderCommand::RenderCommand(CLI::App& app) : params_(RenderParams()) {
   command_ = app.add_subcommand("render", "Render a molecule to PNG or EXR");
-  command_->add_option("MOLECULE", molecule_, "PDB or mmCIF file (plain or .gz), or a PSF topology with --trajectory (or the scene's \"molecule\")");
+  command_->add_option("MOLECULE", molecules_,
+                       "PDB or mmCIF files (plain or .gz), rendered one after another in one process (-o with "
+                       "{stem} or {index}; a bad one is reported and skipped, and the exit is 2), or a PSF "
+                       "topology with --trajectory; the scene's \"molecule\" only when none is given here");
   command_->add_option("--scene", scene_, "Scene file (JSON): any option below as {\"name\": value}; flags given here override it")
       ->check(CLI::ExistingFile);
   params_.AddTo(*command_);
@@ -246,11 +225,11 @@ RenderCommand::RenderCommand(CLI::App& app) : params_(RenderParams()) {
 RenderArgs RenderCommand::Args() {
   RenderArgs a;
   params_.inputs().CollectFlags();
-  a.molecule = molecule_;
+  a.molecules = molecules_;
   a.scene = scene_;
   if (!scene_.empty()) {
     const std::string sceneMolecule = params_.inputs().ReadScene(scene_);
-    if (a.molecule.empty()) a.molecule = sceneMolecule;
+    if (a.molecules.empty() && !sceneMolecule.empty()) a.molecules = {sceneMolecule};
   }
   ApplyBundles(params_.inputs());
   params_.Apply(a);
@@ -272,14 +251,6 @@ void RequireMirrored(const effects::RenderOptions& ro) {
   }
 }
 #endif
-
-// The default output: the molecule's stem in the working directory ("1tii.png" for
-// ../data/1tii.pdb.gz), numbered for several trajectory frames ("md_00000.png", ...).
-std::string DefaultOutput(const std::string& molecule, bool numbered) {
-  std::filesystem::path p = std::filesystem::path(molecule).filename();
-  if (p.extension() == ".gz") p = p.stem();
-  return p.stem().string() + (numbered ? "_%05d" : "") + ".png";
-}
 
 // Prints a warning for each layer that selects nothing: a valid answer, but often a typo.
 void WarnEmptyLayers(const std::vector<std::string>& selections) {
@@ -332,9 +303,11 @@ void FitDepthRange(const RenderArgs& a, const std::optional<scene::View>& view, 
 }
 
 // The camera: --view, or --camera, or the oriented (or file-axes) default; then --fov,
-// --ortho, --rotate, --zoom, and near/far fitted to the drawn scene unless given.
+// --ortho, --rotate, a turntable frame's `turn` (degrees about the axes --rotate uses, of the
+// view --rotate left), --zoom, and near/far fitted to the drawn scene unless given.
 raster::Camera FrameCamera(const RenderArgs& a, const std::optional<scene::View>& view,
-                           const raster::PrimitiveScene& drawn, const raster::PrimitiveScene& framing, ImageSize size) {
+                           const raster::PrimitiveScene& drawn, const raster::PrimitiveScene& framing, ImageSize size,
+                           glm::dvec3 turn = glm::dvec3(0.0)) {
   raster::Camera cam;
   if (view) {
     cam = scene::CameraOf(*view, size.width, size.height);
@@ -361,9 +334,207 @@ raster::Camera FrameCamera(const RenderArgs& a, const std::optional<scene::View>
     const std::vector<double> r = ParseNumbers(a.rotate, 3, "--rotate");
     raster::ApplyRotation(cam, {r[0], r[1], r[2]}, view ? cam.target : framing.Bounds().center);
   }
+  // The same call --rotate makes, so turntable frame k is the --rotate render of its angle.
+  if (turn != glm::dvec3(0.0)) raster::ApplyRotation(cam, turn, view ? cam.target : framing.Bounds().center);
   if (a.zoom != 1.0) raster::ApplyZoom(cam, a.zoom);
   FitDepthRange(a, view, drawn, cam);
   return cam;
+}
+
+// What every input of a run shares, checked once before the first input loads: the options
+// that need several flags together, the output kind, the turntable and the shard.
+struct RunPlan {
+  OutputKind kind = OutputKind::kPng;
+  ImageSize size;
+  effects::RenderOptions options;
+  std::optional<io::Selection> highlight;
+  std::optional<scene::View> view;
+  Turntable turntable;
+  Shard shard;
+  size_t framesPerInput = 1;  // without a trajectory: one still, or the turntable's frames
+};
+
+// The checks that need several options together, before anything loads.
+void CheckCombinations(const RenderArgs& a, const RunPlan& p) {
+  const effects::RenderOptions& ro = p.options;
+  if (!a.trajectory.empty() && a.molecules.size() > 1)
+    throw io::InputError({"--trajectory"}, "a trajectory belongs to one topology: give one MOLECULE with --trajectory");
+  if (a.trajectory.empty() && !a.frames.empty()) throw io::InputError({"--frames"}, "--frames needs --trajectory FILE");
+  if (!a.trajectory.empty() && a.repeat != 1)
+    throw io::InputError({"--repeat"}, "--repeat times one frame; it does not combine with --trajectory");
+  if (p.turntable.frames > 0 && !a.trajectory.empty())
+    throw io::InputError({"--turntable"}, "--turntable turns one structure; it does not combine with --trajectory");
+  if (p.turntable.frames > 0 && a.repeat != 1)
+    throw io::InputError({"--repeat"}, "--repeat times one frame; it does not combine with --turntable");
+  if (ro.highlight.trail > 0 && a.trajectory.empty())
+    throw io::InputError({"--highlight-trail"}, "--highlight-trail needs --trajectory FILE (a trail follows the selection across frames)");
+  if (ro.highlight.trail > 0 && a.highlight.empty())
+    throw io::InputError({"--highlight-trail"}, "--highlight-trail needs --highlight SELECTION");
+  if (ro.highlight.trail > 0 && p.shard.count > 1)
+    throw io::InputError({"--shard"}, "a --highlight-trail frame depends on every frame before it, so shards cannot split it");
+  if (int64_t(p.size.width) * p.size.height * ro.ssaa * ro.ssaa > (int64_t(1) << 28))
+    throw io::InputError({"--ssaa"}, "size × ssaa² is more than 2^28 samples");
+}
+
+// Every option was checked as it was parsed; what remains needs several of them together.
+RunPlan PlanRun(const RenderArgs& a) {
+  if (a.molecules.empty())
+    throw io::InputError({"MOLECULE"}, "no molecule: give a file, or \"molecule\" in the --scene file");
+  RunPlan p;
+  if (!a.output.empty()) p.kind = OutputKindOf(a.output);
+  p.size = ParseSize(a.size, "--size");
+  p.options = a.options;  // the automatic AO, the atlas and the highlight follow per input
+#if SOFTMOL_HAVE_GL
+  if (a.backend == "gl") {
+    effects::RenderOptions planned = p.options;
+    if (!a.highlight.empty()) planned.highlight.spheres = {1};  // the halo passes will be planned
+    if (planned.ao == effects::AoMode::kAuto) planned.ao = effects::AoMode::kCone;  // baked or cone: both mirrored
+    RequireMirrored(planned);
+  }
+#endif
+  if (!a.turntable.empty()) p.turntable = ParseTurntable(a.turntable, {"--turntable"});
+  if (!a.shard.empty()) p.shard = ParseShard(a.shard, {"--shard"});
+  if (p.turntable.frames > 0) p.framesPerInput = p.turntable.frames;
+  CheckCombinations(a, p);
+  if (!a.highlight.empty()) p.highlight = io::ParseSelection(a.highlight, {"--highlight"});
+  if (!a.view.empty()) p.view = scene::ParseView(a.view, {"--view"});
+  // A trajectory's frame count is known once it is open; its names are checked then.
+  CheckOutputPatterns(a.output, a.molecules, a.trajectory.empty() && p.framesPerInput > 1);
+  return p;
+}
+
+// One structure ready to render: the molecule, what is drawn, the options that follow from it
+// (the bake's atlas, the highlighted spheres) and the camera that frames it.
+struct InputScene {
+  LoadedMolecule loaded;
+  scene::ResolvedLooks looks;
+  raster::RepresentationOptions rep;
+  raster::Representation drawn;
+  raster::PrimitiveScene framing;
+  effects::RenderOptions options;
+  raster::Camera camera;  // before any turntable turn
+};
+
+InputScene PrepareInput(const RenderArgs& a, const RunPlan& plan, const std::string& input, FrameSink& sink) {
+  InputScene s;
+  s.loaded = LoadMolecule(input, a.assembly, a.trajectory, scene::NeedsBonds(a.layers));
+  sink.AddSteps(s.loaded.steps);
+  const Clock::time_point t0 = Clock::now();
+  s.looks = scene::ResolveLooks(s.loaded.molecule, a.layers);
+  WarnEmptyLayers(s.looks.emptyLayers);
+  s.rep.tube.helixCylinders = a.helixCylinders;
+  s.drawn = raster::BuildRepresentation(s.loaded.molecule, s.looks.looks, s.rep);
+  sink.AddSteps({{"representation", MsSince(t0)}});
+  if (s.drawn.scene.size() == 0)
+    throw io::InputError({input}, "nothing to draw: every atom is hidden (see --style, --show, --hide, --show-solvent)");
+  s.options = plan.options;
+  if (s.options.ao == effects::AoMode::kAuto)
+    s.options.ao = effects::AutomaticAo(s.drawn.scene.size(), a.bake.directions, !a.trajectory.empty());
+  if (s.options.ao == effects::AoMode::kBaked) s.options.bake = MakeBakeOptions(a.bake, s.drawn.scene);
+  if (plan.highlight) s.options.highlight.spheres = HighlightedSpheres(*plan.highlight, a, s.loaded.molecule, s.drawn);
+  s.framing = FramingScene(s.loaded.molecule, s.drawn);
+  s.camera = FrameCamera(a, plan.view, s.drawn.scene, s.framing, plan.size);
+  if (a.printView) std::printf("--view '%s'\n", scene::FormatView(scene::ViewOf(s.camera)).c_str());
+  return s;
+}
+
+// The frames of one input, validated before any renders: trajectory frame indices, or the
+// turntable's steps, or {0} for a still.
+std::vector<size_t> InputFrames(const RenderArgs& a, const RunPlan& plan, const InputScene& s,
+                                std::unique_ptr<io::TrajectoryReader>& trajectory) {
+  if (!a.trajectory.empty()) {
+    trajectory = io::OpenTrajectory(a.trajectory, s.loaded.molecule.atomCount());
+    return ParseFrameRange(a.frames.empty() ? "0:" : a.frames, trajectory->Info().frameCount, "--frames");
+  }
+  std::vector<size_t> frames(plan.framesPerInput);
+  for (size_t k = 0; k < frames.size(); ++k) frames[k] = k;
+  return frames;
+}
+
+// Trajectory frame k: the camera stays where the topology framed it, so the molecule moves in
+// a fixed view; only near/far follow each frame (unless given). Bonds come from the topology.
+void RenderTrajectoryFrame(const RenderArgs& a, const RunPlan& plan, InputScene& s, io::TrajectoryReader& trajectory,
+                           const std::vector<size_t>& frames, size_t k, effects::FrameResources& resources,
+                           FrameSink& sink) {
+  io::TrajectoryFrame coordinates;
+  trajectory.Seek(frames[k]);
+  if (!trajectory.Next(coordinates))
+    throw io::InputError({a.trajectory, 0, 0, "frame " + std::to_string(frames[k])}, "frame is missing");
+  io::ApplyFrame(coordinates, s.loaded.molecule);
+  const raster::PrimitiveScene moving = raster::BuildRepresentation(s.loaded.molecule, s.looks.looks, s.rep).scene;
+  raster::Camera view = s.camera;
+  FitDepthRange(a, plan.view, moving, view);
+  if (s.options.highlight.trail > 0) {
+    // Δt of §6.2: the simulation time between this frame and the last one rendered. A
+    // trajectory without a time step (multi-model PDB) counts one ps per frame.
+    const double stepPs = trajectory.Info().timeStepPs > 0 ? trajectory.Info().timeStepPs : 1.0;
+    s.options.highlight.frameDelta = k == 0 ? 0.0 : stepPs * double(frames[k] - frames[k - 1]);
+  }
+  sink.Render(moving, view, s.options, resources);
+}
+
+// A still (--repeat times), or turntable frame k: the camera turns, the atoms do not, so the
+// AO bake and the occupancy pyramid are reused from frame to frame.
+void RenderStillFrame(const RenderArgs& a, const RunPlan& plan, const InputScene& s, size_t k,
+                      effects::FrameResources& resources, FrameSink& sink) {
+  const raster::Camera cam =
+      k == 0 ? s.camera
+             : FrameCamera(a, plan.view, s.drawn.scene, s.framing, plan.size, TurntableDegrees(plan.turntable, k));
+  for (int r = 0; r < a.repeat; ++r) sink.Render(s.drawn.scene, cam, s.options, resources);
+}
+
+// "md.pdb: 17411 atoms, ... -> md_%05d.png (96x72, 3 trajectory frames) in 123.4 ms".
+void PrintSummary(const RenderArgs& a, const RunPlan& plan, const std::string& input, const InputScene& s,
+                  const std::string& pattern, size_t frames, size_t taken, double ms) {
+  const raster::PrimitiveScene& scene = s.drawn.scene;
+  std::printf("%s: %zu atoms, %zu spheres, %zu cylinders, %zu ellipsoids -> %s (%dx%d", input.c_str(),
+              s.loaded.molecule.atomCount(), scene.spheres.radius.size(), scene.cylinders.radius.size(),
+              scene.ellipsoids.color.size(), pattern.c_str(), plan.size.width, plan.size.height);
+  if (plan.options.ssaa > 1) std::printf(", ssaa %d", plan.options.ssaa);
+  if (!a.trajectory.empty()) std::printf(", %zu trajectory frames", frames);
+  if (plan.turntable.frames > 0) std::printf(", %zu turntable frames", frames);
+  if (plan.shard.count > 1) std::printf(", shard %zu/%zu renders %zu", plan.shard.index, plan.shard.count, taken);
+  std::printf(") in %.1f ms\n", ms);
+}
+
+// One input: loads it, renders the frames this shard takes (job numbers from `firstJob`) and
+// writes them under the run's names.
+void RenderInput(const RenderArgs& a, const RunPlan& plan, const std::string& input, size_t index, size_t firstJob,
+                 FrameSink& sink) {
+  const Clock::time_point start = Clock::now();
+  InputScene s = PrepareInput(a, plan, input, sink);
+  std::unique_ptr<io::TrajectoryReader> trajectory;
+  const std::vector<size_t> frames = InputFrames(a, plan, s, trajectory);
+  if (trajectory) CheckOutputPatterns(a.output, a.molecules, frames.size() > 1);
+  const std::string pattern = InputOutputPattern(a.output, input, index, frames.size() > 1);
+  const bool progress = !a.quiet && frames.size() > 1 && isatty(STDERR_FILENO);
+  effects::FrameResources resources;  // one structure's bake and pyramid, kept across its frames
+  size_t taken = 0;
+  for (size_t k = 0; k < frames.size(); ++k) {
+    if (!plan.shard.Takes(firstJob + k)) continue;
+    if (trajectory) RenderTrajectoryFrame(a, plan, s, *trajectory, frames, k, resources, sink);
+    else RenderStillFrame(a, plan, s, k, resources, sink);
+    sink.Write(FrameOutputName(pattern, a.numberByFrame ? frames[k] : k), plan.kind, s.options);
+    ++taken;
+    if (progress) std::fprintf(stderr, "\rframe %zu (%zu of %zu)   ", frames[k], k + 1, frames.size());
+  }
+  if (progress) std::fprintf(stderr, "\n");
+  if (!a.quiet) PrintSummary(a, plan, input, s, pattern, frames.size(), taken, MsSince(start));
+}
+
+// Whether this shard renders any frame of input `index` (a trajectory's count is not known
+// before it loads; it is the only input then).
+bool ShardTakesInput(const RenderArgs& a, const RunPlan& plan, size_t index) {
+  if (!a.trajectory.empty() || plan.framesPerInput >= plan.shard.count) return true;
+  for (size_t k = 0; k < plan.framesPerInput; ++k)
+    if (plan.shard.Takes(index * plan.framesPerInput + k)) return true;
+  return false;
+}
+
+// A bad input of several: its one line (naming the file when the error names an option).
+void ReportFailedInput(const std::string& input, const io::InputError& e) {
+  if (e.where().file == input) std::fprintf(stderr, "softmol: %s\n", e.what());
+  else std::fprintf(stderr, "softmol: %s: %s\n", input.c_str(), e.what());
 }
 
 }  // namespace
@@ -373,190 +544,27 @@ int RunRender(const RenderArgs& a) {
     std::fputs(PresetListing().c_str(), stdout);
     return 0;
   }
-  // Every option was checked as it was parsed; what remains needs several of them together.
-  if (a.molecule.empty())
-    throw io::InputError({"MOLECULE"}, "no molecule: give a file, or \"molecule\" in the --scene file");
-  std::string output = a.output;  // "" until the frame count is known
-  const OutputKind kind = output.empty() ? OutputKind::kPng : OutputKindOf(output);
-  const ImageSize size = ParseSize(a.size, "--size");
-  // What follows from the scene (the automatic AO, the bake's atlas, the highlighted spheres)
-  // is filled in once the molecule is read.
-  effects::RenderOptions ro = a.options;
-  const uint32_t aovs = ro.aovs;
-#if !SOFTMOL_HAVE_GL
-  if (a.backend == "gl")
-    throw io::InputError({"--backend"}, "this softmol was built without the OpenGL mirror (configure with -DSOFTMOL_BUILD_GL=ON)");
-#else
-  if (a.backend == "gl") {
-    effects::RenderOptions planned = ro;
-    if (!a.highlight.empty()) planned.highlight.spheres = {1};  // the halo passes will be planned
-    if (planned.ao == effects::AoMode::kAuto) planned.ao = effects::AoMode::kCone;  // baked or cone: both mirrored
-    RequireMirrored(planned);
-  }
-#endif
-  if (ro.highlight.trail > 0 && a.trajectory.empty())
-    throw io::InputError({"--highlight-trail"}, "--highlight-trail needs --trajectory FILE (a trail follows the selection across frames)");
-  if (ro.highlight.trail > 0 && a.highlight.empty())
-    throw io::InputError({"--highlight-trail"}, "--highlight-trail needs --highlight SELECTION");
-  std::optional<io::Selection> highlight;
-  if (!a.highlight.empty()) highlight = io::ParseSelection(a.highlight, {"--highlight"});
-  if (int64_t(size.width) * size.height * ro.ssaa * ro.ssaa > (int64_t(1) << 28))
-    throw io::InputError({"--ssaa"}, "size × ssaa² is more than 2^28 samples");
+  const RunPlan plan = PlanRun(a);
   std::unique_ptr<tbb::global_control> threads;
   if (a.threads > 0)
     threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(a.threads));
-
-  ProfileTrace trace;
-  const Clock::time_point start = Clock::now();
-  LoadedMolecule loaded = LoadMolecule(a.molecule, a.assembly, a.trajectory, scene::NeedsBonds(a.layers));
-  // Trajectory frames to render (validated before any rendering), and the output names.
-  std::unique_ptr<io::TrajectoryReader> trajectory;
-  std::vector<size_t> frameIndices;
-  if (!a.trajectory.empty()) {
-    if (a.repeat != 1) throw io::InputError({"--repeat"}, "--repeat times one frame; it does not combine with --trajectory");
-    trajectory = io::OpenTrajectory(a.trajectory, loaded.molecule.atomCount());
-    frameIndices = ParseFrameRange(a.frames.empty() ? "0:" : a.frames, trajectory->Info().frameCount, "--frames");
-    std::string name;
-    if (output.empty()) output = DefaultOutput(a.molecule, frameIndices.size() > 1);
-    if (frameIndices.size() > 1 && !FormatFrameName(output, 0, name))
-      throw io::InputError({"-o"}, "several frames need a numbered output name with one %d or %0Nd, e.g. frame_%05d.png");
-  } else if (!a.frames.empty()) {
-    throw io::InputError({"--frames"}, "--frames needs --trajectory FILE");
-  }
-  if (output.empty()) output = DefaultOutput(a.molecule, false);
-  double t = 0;
-  for (const StepTime& s : loaded.steps) {
-    trace.AddComplete(s.name, "load", t, s.ms);
-    t += s.ms;
-  }
-
-  Clock::time_point t0 = Clock::now();
-  const scene::ResolvedLooks looks = scene::ResolveLooks(loaded.molecule, a.layers);
-  WarnEmptyLayers(looks.emptyLayers);
-  raster::RepresentationOptions rep;
-  rep.tube.helixCylinders = a.helixCylinders;
-  const raster::Representation drawn = raster::BuildRepresentation(loaded.molecule, looks.looks, rep);
-  const raster::PrimitiveScene& scene = drawn.scene;
-  const double repMs = MsSince(t0);
-  trace.AddComplete("representation", "load", t, repMs);
-  if (scene.size() == 0)
-    throw io::InputError({a.molecule}, "nothing to draw: every atom is hidden (see --style, --show, --hide, --show-solvent)");
-  if (ro.ao == effects::AoMode::kAuto)
-    ro.ao = effects::AutomaticAo(scene.size(), a.bake.directions, trajectory != nullptr);
-  if (ro.ao == effects::AoMode::kBaked) ro.bake = MakeBakeOptions(a.bake, scene);
-  if (highlight) ro.highlight.spheres = HighlightedSpheres(*highlight, a, loaded.molecule, drawn);
-
-  std::optional<scene::View> givenView;
-  if (!a.view.empty()) givenView = scene::ParseView(a.view, {"--view"});
-  raster::Camera cam = FrameCamera(a, givenView, scene, FramingScene(loaded.molecule, drawn), size);
-  if (a.printView) std::printf("--view '%s'\n", scene::FormatView(scene::ViewOf(cam)).c_str());
-
-  effects::RenderedFrame frame;
-  effects::FrameResources resources;
-  double frameStart = MsSince(start);
-  double best = 1e300, sum = 0;
-  int rendered = 0;
-#if SOFTMOL_HAVE_GL
-  // --backend gl: the same scene, camera and options through the GL mirror (gl/).
-  std::unique_ptr<gl::Context> glContext;
-  std::unique_ptr<gl::FrameRenderer> glRenderer;
-  if (a.backend == "gl") {
-    // llvmpipe takes its thread count from the environment, read when the context starts.
-    if (a.threads > 0) setenv("LP_NUM_THREADS", std::to_string(a.threads).c_str(), /*overwrite=*/0);
-    std::string why;
-    glContext = gl::Context::Create(why);
-    // No driver, or one that refuses the mirror: the machine's fault, not the input's.
-    if (!glContext) throw io::InternalError("--backend gl: no EGL/OpenGL 4.5 context: " + why);
+  FrameSink sink(a.backend, a.threads);  // start-up (the GL context) paid once for every input
+  size_t failed = 0;
+  for (size_t i = 0; i < a.molecules.size(); ++i) {
+    if (!ShardTakesInput(a, plan, i)) continue;
     try {
-      glRenderer = std::make_unique<gl::FrameRenderer>();
-    } catch (const std::runtime_error& e) {  // a driver that rejects the GLSL
-      throw io::InternalError(std::string("--backend gl: the driver rejected the mirror: ") + e.what());
+      RenderInput(a, plan, a.molecules[i], i, i * plan.framesPerInput, sink);
+    } catch (const io::InputError& e) {
+      if (a.molecules.size() == 1) throw;  // main's one line, as for any bad input
+      ReportFailedInput(a.molecules[i], e);
+      ++failed;
     }
   }
-#endif
-  auto renderOnce = [&](const raster::PrimitiveScene& drawn, const raster::Camera& view) {
-#if SOFTMOL_HAVE_GL
-    if (glRenderer) {
-      try {
-        glRenderer->RenderFrame(drawn, view, ro, frame);
-      } catch (const std::runtime_error& e) {  // a GL error (driver limit or mirror bug)
-        throw io::InternalError(std::string("--backend gl: ") + e.what());
-      }
-    } else {
-      effects::RenderFrame(drawn, view, ro, frame, &resources);
-    }
-#else
-    effects::RenderFrame(drawn, view, ro, frame, &resources);
-#endif
-    trace.AddFrame(rendered++, frameStart, frame);
-    frameStart += frame.totalMs;
-    best = std::min(best, frame.totalMs);
-    sum += frame.totalMs;
-  };
-  auto writeOutputs = [&](const std::string& path) {
-    const Clock::time_point w0 = Clock::now();
-    if (kind == OutputKind::kPng) {
-      io::WritePng(path, frame.width, frame.height, ro.transparent ? 4 : 3,
-                   effects::EncodeSrgb8(frame, ro.transparent));
-      if (aovs != 0) io::WriteExr(SiblingAovPath(path), ToExr(frame, /*withColor=*/false));
-    } else {
-      io::WriteExr(path, ToExr(frame, /*withColor=*/true));
-    }
-    const double ms = MsSince(w0);
-    trace.AddComplete("write", "output", frameStart, ms);
-    frameStart += ms;
-  };
-
-  if (!trajectory) {
-    for (int k = 0; k < a.repeat; ++k) renderOnce(scene, cam);
-    writeOutputs(output);
-  } else {
-    // The camera stays where the topology framed it, so the molecule moves in a fixed view;
-    // only near/far follow each frame (unless given). Bonds come from the topology.
-    const bool progress = !a.quiet && isatty(STDERR_FILENO);
-    io::TrajectoryFrame coordinates;
-    raster::PrimitiveScene moving;
-    for (size_t k = 0; k < frameIndices.size(); ++k) {
-      trajectory->Seek(frameIndices[k]);
-      if (!trajectory->Next(coordinates))
-        throw io::InputError({a.trajectory, 0, 0, "frame " + std::to_string(frameIndices[k])}, "frame is missing");
-      io::ApplyFrame(coordinates, loaded.molecule);
-      moving = raster::BuildRepresentation(loaded.molecule, looks.looks, rep).scene;
-      raster::Camera view = cam;
-      FitDepthRange(a, givenView, moving, view);
-      if (ro.highlight.trail > 0) {
-        // Δt of §6.2: the simulation time between this frame and the last one rendered. A
-        // trajectory without a time step (multi-model PDB) counts one ps per frame.
-        const double stepPs = trajectory->Info().timeStepPs > 0 ? trajectory->Info().timeStepPs : 1.0;
-        ro.highlight.frameDelta = k == 0 ? 0.0 : stepPs * double(frameIndices[k] - frameIndices[k - 1]);
-      }
-      renderOnce(moving, view);
-      std::string name = output;
-      FormatFrameName(output, frameIndices[k], name);  // keeps a plain name for a single frame
-      writeOutputs(name);
-      if (progress)
-        std::fprintf(stderr, "\rframe %zu (%zu of %zu)   ", frameIndices[k], k + 1, frameIndices.size());
-    }
-    if (progress) std::fprintf(stderr, "\n");
-  }
-  if (!a.profile.empty()) trace.Write(a.profile);
-
-  if (!a.quiet) {
-    std::printf("%s: %zu atoms, %zu spheres, %zu cylinders, %zu ellipsoids -> %s (%dx%d",
-                a.molecule.c_str(), loaded.molecule.atomCount(), scene.spheres.radius.size(),
-                scene.cylinders.radius.size(), scene.ellipsoids.color.size(), output.c_str(),
-                frame.width, frame.height);
-    if (ro.ssaa > 1) std::printf(", ssaa %d", ro.ssaa);
-    if (trajectory) std::printf(", %zu trajectory frames", frameIndices.size());
-    std::printf(")\n");
-    std::printf("frame: %.2f ms", frame.totalMs);
-    if (rendered > 1) std::printf(" (best of %d: %.2f ms, mean %.2f ms)", rendered, best, sum / rendered);
-    std::printf(" [");
-    for (size_t i = 0; i < frame.passes.size(); ++i)
-      std::printf("%s%s %.2f", i ? ", " : "", frame.passes[i].name.c_str(), frame.passes[i].durationMs);
-    std::printf("]\n");
-  }
-  return 0;
+  if (!a.profile.empty()) sink.WriteTrace(a.profile);
+  if (!a.quiet) sink.PrintLastFrame();
+  if (failed == 0) return io::kExitOk;
+  std::fprintf(stderr, "softmol: %zu of %zu inputs failed\n", failed, a.molecules.size());
+  return io::kExitBadInput;
 }
 
 }  // namespace softmol::cli

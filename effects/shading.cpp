@@ -46,7 +46,11 @@ ShadeConstants LightConstants(const ShadingOptions& o) {
 
 glm::vec3 ShadePixel(glm::vec3 normal, glm::vec3 baseColorLinear, float ambientOcclusion,
                      const ShadingOptions& o) {
-  const LightVectorSet v = LightVectors(o);
+  return ShadePixel(normal, baseColorLinear, ambientOcclusion, LightVectors(o), o);
+}
+
+glm::vec3 ShadePixel(glm::vec3 normal, glm::vec3 baseColorLinear, float ambientOcclusion,
+                     const LightVectorSet& v, const ShadingOptions& o) {
   const shared::LightingTerms t = shared::LitTerms(
       {normal.x, normal.y, normal.z}, {v.key.x, v.key.y, v.key.z}, {v.half.x, v.half.y, v.half.z},
       {v.fill.x, v.fill.y, v.fill.z}, ambientOcclusion, 1.0f,

@@ -99,8 +99,11 @@ struct LightVectorSet {
 };
 LightVectorSet LightVectors(const ShadingOptions& o);
 
-// One unshadowed pixel, the formula ShadeAndResolve applies (the reference for tests).
+// One unshadowed pixel, the formula ShadeAndResolve applies (the reference for tests); the
+// second form takes the light vectors made once (LightVectors(o)) for many pixels.
 glm::vec3 ShadePixel(glm::vec3 normal, glm::vec3 baseColorLinear, float ambientOcclusion,
                      const ShadingOptions& o);
+glm::vec3 ShadePixel(glm::vec3 normal, glm::vec3 baseColorLinear, float ambientOcclusion,
+                     const LightVectorSet& lights, const ShadingOptions& o);
 
 }  // namespace softmol::effects

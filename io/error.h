@@ -30,6 +30,7 @@ struct SourceLocation {
 // Exit codes of the softmol command (listed in `softmol --help`).
 enum ExitCode : int {
   kExitOk = 0,
+  kExitDifferent = 1,    // `softmol diff`: the images differ (as cmp)
   kExitBadInput = 2,     // InputError, or a command line CLI11 rejects
   kExitInternal = 3,     // InternalError, or any other exception from a dependency
   kExitOutOfMemory = 4,  // std::bad_alloc

@@ -2,6 +2,9 @@
 # scripts/setup.sh — installs softmol's build dependencies, all Debian 12 packages.
 # Idempotent: packages already installed are skipped, and nothing runs when all are there.
 # Uses apt-get directly as root, sudo otherwise.
+# --peers also installs the peers that bench/ measures softmol against (issue 17): Embree 3
+# (bench/peer_bench, built only when CMake finds it; 43 MB) and Tachyon (bench/peers_tachyon.py).
+# Neither is needed to build or test softmol.
 set -euo pipefail
 
 packages=(
@@ -11,7 +14,15 @@ packages=(
   libhwy-dev libcli11-dev nlohmann-json3-dev zlib1g-dev libpng-dev
   clang libclang-rt-14-dev   # libFuzzer targets (scripts/fuzz.sh)
   libegl-dev libopengl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri glslang-tools  # gl/ mirror (llvmpipe)
+  parallel   # GNU parallel: the shard test (tests/cli/cli_batch_test.cpp) runs the README's one-liner
+  slurmctld slurmd slurm-client   # a one-node Slurm cluster for the job-array test (tests/cli/cli_slurm_test.cpp)
 )
+if [ "${1:-}" = "--peers" ]; then
+  packages+=(libembree-dev tachyon python3)
+elif [ $# -gt 0 ]; then
+  echo "usage: scripts/setup.sh [--peers]" >&2
+  exit 2
+fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -84,6 +84,22 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"depth_cue_above_one", "render " + kPept + " -o %O --depth-cue 1.5", "--depth-cue"},
         BadCase{"odd_ao_directions", "render " + kPept + " -o %O --ao baked --ao-directions 7", "--ao-directions"},
         BadCase{"ao_patch_too_big", "render " + kPept + " -o %O --ao baked --ao-patch 4096 --ao-texture 64", "--ao-"},
+        BadCase{"shard_past_count", "render " + kPept + " -o %O --shard 3/3", "--shard"},
+        BadCase{"shard_zero_count", "render " + kPept + " -o %O --shard 0/0", "--shard"},
+        BadCase{"shard_malformed", "render " + kPept + " -o %O --shard 1-4", "--shard"},
+        BadCase{"shard_negative", "render " + kPept + " -o %O --shard=-1/4", "--shard"},
+        BadCase{"turntable_zero", "render " + kPept + " -o %D/t_%05d.png --turntable 0", "--turntable"},
+        BadCase{"turntable_bad_axis", "render " + kPept + " -o %D/t_%05d.png --turntable 8:w", "--turntable"},
+        BadCase{"turntable_unnumbered_output", "render " + kPept + " -o %O --turntable 4", "-o"},
+        BadCase{"turntable_with_trajectory", "render '" + Data("md.pdb") + "' --trajectory '" + Data("md.xtc") +
+                                                 "' -o %D/t_%05d.png --turntable 4", "--turntable"},
+        BadCase{"several_inputs_one_output", "render " + kPept + " '" + Data("1CRN.cif") + "' -o %O", "-o"},
+        BadCase{"several_inputs_same_stem", "render " + kPept + " " + kPept + " -o '%D/{stem}.png'", "-o"},
+        BadCase{"trajectory_several_inputs", "render '" + Data("md.pdb") + "' " + kPept + " --trajectory '" +
+                                                 Data("md.xtc") + "' -o '%D/{stem}_%05d.png'", "--trajectory"},
+        BadCase{"trail_in_shards", "render '" + Data("md.pdb") + "' --trajectory '" + Data("md.xtc") +
+                                       "' -o %D/t_%05d.png --highlight ion --highlight-trail 5 --shard 0/2", "--shard"},
+        BadCase{"bad_frame_numbers", "render " + kPept + " -o %O --frame-numbers index", "--frame-numbers"},
         BadCase{"info_missing", "info %D/missing.cif", "missing.cif"}),
     [](const testing::TestParamInfo<BadCase>& i) { return std::string(i.param.name); });
 

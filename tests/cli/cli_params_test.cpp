@@ -36,6 +36,7 @@ std::string SampleValue(const io::Param<RenderArgs>& p, const std::string& def) 
       {"rotate", "10,20,30"},   {"profile", "/tmp/p.json"}, {"fog-color", "123456"},
       {"show", "ligand=balls,orange"}, {"hide", "hydrogen"}, {"color", "chain B=bfactor:10:20"},
       {"view", "eye=1,2,3 target=0,0,0 up=0,1,0 fov=25 near=1 far=9"},
+      {"turntable", "36:x"},    {"shard", "1/4"},
       {"pcf-pretest", "0"},     // its upper end would break the rule "at most --pcf-samples"
       {"ao-strength", "0.5"}};  // its upper end is the default
   if (p.isSwitch) return "true";

@@ -195,11 +195,11 @@ TEST(CliRender, TrajectoryFramesBecomeNumberedImagesThatMove) {
   ASSERT_EQ(r.exitCode, 0) << r.err;
   std::string bytes[3];
   for (int k = 0; k < 3; ++k) {
-    const auto file = dir / ("md_0" + std::to_string(k) + "0.png");
+    const auto file = dir / ("md_00" + std::to_string(k) + ".png");  // numbered 0, 1, 2 in output order
     ASSERT_TRUE(std::filesystem::exists(file)) << file;
     bytes[k] = Slurp(file);
   }
-  EXPECT_FALSE(std::filesystem::exists(dir / "md_001.png")) << "STEP 10 skips frame 1";
+  EXPECT_FALSE(std::filesystem::exists(dir / "md_010.png")) << "numbered by output, not by trajectory frame";
   EXPECT_NE(bytes[0], bytes[1]) << "the molecule moves between frames 0 and 10";
   EXPECT_NE(bytes[1], bytes[2]);
   // The occupancy pyramid is rebuilt for every frame (the atoms moved), never reused.
@@ -246,7 +246,7 @@ TEST(CliRender, HaloTrailLeavesAWakeAcrossFrames) {
                                        dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     for (int k = 0; k < 3; ++k)
-      bytes[t][k] = Slurp(dir / ((t ? "short_0" : "long_0") + std::to_string(k) + "0.png"));
+      bytes[t][k] = Slurp(dir / ((t ? "short_00" : "long_00") + std::to_string(k) + ".png"));
   }
   EXPECT_EQ(bytes[0][0], bytes[1][0]);
   EXPECT_NE(bytes[0][2], bytes[1][2]) << "the long trail keeps a wake";

@@ -1,8 +1,9 @@
 // tests/cli/golden_image_test.cpp — golden images compared exactly (the determinism promise:
 // same inputs, same bytes, on every machine, thread count and SIMD target). On a mismatch the
-// test writes <name>.actual.png and <name>.diff.png (|Δ| ×16 per channel) next to the test
-// binary and prints how many pixels differ and by how much. Regenerate the goldens only on
-// purpose: SOFTMOL_UPDATE_GOLDENS=1 ctest -R Golden, then look at the images before committing.
+// test writes <name>.actual.png and <name>.diff.png (the picture `softmol diff -o` draws) next
+// to the test binary and prints `softmol diff`'s summary line (io/image_diff.h). Regenerate the
+// goldens only on purpose: SOFTMOL_UPDATE_GOLDENS=1 ctest -R Golden, then look at the images
+// before committing.
 #include <cstdlib>
 #include <filesystem>
 
@@ -11,6 +12,7 @@
 #include "effects/frame_renderer.h"
 #include "io/bonds.h"
 #include "io/error.h"
+#include "io/image_diff.h"
 #include "io/image_io.h"
 #include "io/structure_reader.h"
 #include "raster/camera.h"
@@ -85,25 +87,17 @@ TEST_P(GoldenImage, MatchesExactly) {
   }
   ASSERT_TRUE(std::filesystem::exists(golden)) << "no golden image " << golden
                                                << " (SOFTMOL_UPDATE_GOLDENS=1 writes it)";
-  const io::Image8 want = io::ReadImage8(golden.string());
-  ASSERT_EQ(want.width, f.width);
-  ASSERT_EQ(want.height, f.height);
-  ASSERT_EQ(want.channels, 3);
-  size_t differing = 0;
-  int maxDelta = 0;
-  std::vector<uint8_t> diff(px.size());
-  for (size_t i = 0; i < px.size(); ++i) {
-    const int d = std::abs(int(px[i]) - int(want.pixels[i]));
-    diff[i] = uint8_t(std::min(255, d * 16));
-    maxDelta = std::max(maxDelta, d);
-    if (d != 0) ++differing;
+  // The comparison `softmol diff` makes (io/image_diff.h), at its default tolerance: none.
+  const io::DiffImage want = io::ReadDiffImage(golden.string());
+  const io::DiffImage got = io::FromImage8({f.width, f.height, 3, px});
+  const io::DiffResult r = io::CompareImages(want, got, {}, golden.string(), "the render");
+  const std::string name(s.name);
+  if (!r.same) {
+    io::WritePng(name + ".actual.png", f.width, f.height, 3, px);
+    io::WritePng(name + ".diff.png", f.width, f.height, 3, io::DiffPicture(want, r));
   }
-  if (differing != 0) {
-    io::WritePng(std::string(s.name) + ".actual.png", f.width, f.height, 3, px);
-    io::WritePng(std::string(s.name) + ".diff.png", f.width, f.height, 3, diff);
-  }
-  EXPECT_EQ(differing, 0u) << s.name << ": " << differing << " channel values differ, max |Δ| " << maxDelta
-                           << "; see " << std::filesystem::current_path() / (std::string(s.name) + ".diff.png");
+  EXPECT_TRUE(r.same) << name << ": " << io::DiffSummary(r) << "; see "
+                      << std::filesystem::current_path() / (name + ".diff.png");
 }
 
 INSTANTIATE_TEST_SUITE_P(

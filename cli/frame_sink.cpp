@@ -1,0 +1,142 @@
+// cli/frame_sink.cpp — the renderer, writers and timings of one `softmol render` run.
+#include "cli/frame_sink.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <stdexcept>
+
+#include "io/image_io.h"
+#if SOFTMOL_HAVE_GL
+#include "gl/context_egl.h"
+#include "gl/frame_renderer.h"
+#endif
+
+namespace softmol::cli {
+namespace {
+
+// NAME.png -> NAME.aov.exr, beside it.
+std::string SiblingAovPath(const std::string& png) {
+  std::filesystem::path p(png);
+  return (p.parent_path() / (p.stem().string() + ".aov.exr")).string();
+}
+
+io::ImageFile ToExr(const effects::RenderedFrame& f, bool withColor) {
+  io::ImageFile img;
+  img.width = f.width;
+  img.height = f.height;
+  const size_t n = size_t(f.width) * size_t(f.height);
+  if (withColor) {
+    const char* names[4] = {"R", "G", "B", "A"};
+    for (size_t c = 0; c < 4; ++c) {
+      io::ImageChannel ch{names[c], std::vector<float>(n), {}};
+      for (size_t i = 0; i < n; ++i) ch.values[i] = f.rgba[4 * i + c];
+      img.channels.push_back(std::move(ch));
+    }
+  }
+  if (!f.depth.empty()) img.channels.push_back({"Z", f.depth, {}});
+  if (!f.normalX.empty()) {
+    img.channels.push_back({"N.x", f.normalX, {}});
+    img.channels.push_back({"N.y", f.normalY, {}});
+    img.channels.push_back({"N.z", f.normalZ, {}});
+  }
+  if (!f.id.empty()) img.channels.push_back({"id", {}, f.id});
+  if (!f.ao.empty()) img.channels.push_back({"AO", f.ao, {}});
+  return img;
+}
+
+}  // namespace
+
+struct FrameSink::GlMirror {
+#if SOFTMOL_HAVE_GL
+  std::unique_ptr<gl::Context> context;
+  std::unique_ptr<gl::FrameRenderer> renderer;
+#endif
+};
+
+OutputKind OutputKindOf(const std::string& path, const io::SourceLocation& where) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == ".png") return OutputKind::kPng;
+  if (ext == ".exr") return OutputKind::kExr;
+  throw io::InputError(where, "output must end in .png or .exr, got '" + path + "'");
+}
+
+FrameSink::FrameSink(const std::string& backend, [[maybe_unused]] int threads) {
+  if (backend != "gl") return;
+#if !SOFTMOL_HAVE_GL
+  throw io::InputError({"--backend"}, "this softmol was built without the OpenGL mirror (configure with -DSOFTMOL_BUILD_GL=ON)");
+#else
+  // llvmpipe takes its thread count from the environment, read when the context starts.
+  if (threads > 0) setenv("LP_NUM_THREADS", std::to_string(threads).c_str(), /*overwrite=*/0);
+  std::string why;
+  gl_ = std::make_unique<GlMirror>();
+  gl_->context = gl::Context::Create(why);
+  // No driver, or one that refuses the mirror: the machine's fault, not the input's.
+  if (!gl_->context) throw io::InternalError("--backend gl: no EGL/OpenGL 4.5 context: " + why);
+  try {
+    gl_->renderer = std::make_unique<gl::FrameRenderer>();
+  } catch (const std::runtime_error& e) {  // a driver that rejects the GLSL
+    throw io::InternalError(std::string("--backend gl: the driver rejected the mirror: ") + e.what());
+  }
+#endif
+}
+
+FrameSink::~FrameSink() = default;
+
+void FrameSink::Render(const raster::PrimitiveScene& scene, const raster::Camera& camera,
+                       const effects::RenderOptions& options, effects::FrameResources& resources) {
+  cursorMs_ = std::max(cursorMs_, MsSince(start_));
+#if SOFTMOL_HAVE_GL
+  if (gl_) {
+    try {
+      gl_->renderer->RenderFrame(scene, camera, options, frame_);
+    } catch (const std::runtime_error& e) {  // a GL error (driver limit or mirror bug)
+      throw io::InternalError(std::string("--backend gl: ") + e.what());
+    }
+  } else {
+    effects::RenderFrame(scene, camera, options, frame_, &resources);
+  }
+#else
+  effects::RenderFrame(scene, camera, options, frame_, &resources);
+#endif
+  trace_.AddFrame(rendered_++, cursorMs_, frame_);
+  cursorMs_ += frame_.totalMs;
+  bestMs_ = std::min(bestMs_, frame_.totalMs);
+  sumMs_ += frame_.totalMs;
+}
+
+void FrameSink::Write(const std::string& path, OutputKind kind, const effects::RenderOptions& options) {
+  const Clock::time_point w0 = Clock::now();
+  if (kind == OutputKind::kPng) {
+    io::WritePng(path, frame_.width, frame_.height, options.transparent ? 4 : 3,
+                 effects::EncodeSrgb8(frame_, options.transparent));
+    if (options.aovs != 0) io::WriteExr(SiblingAovPath(path), ToExr(frame_, /*withColor=*/false));
+  } else {
+    io::WriteExr(path, ToExr(frame_, /*withColor=*/true));
+  }
+  const double ms = MsSince(w0);
+  trace_.AddComplete("write", "output", cursorMs_, ms);
+  cursorMs_ += ms;
+}
+
+void FrameSink::AddSteps(const std::vector<StepTime>& steps) {
+  for (const StepTime& s : steps) {
+    trace_.AddComplete(s.name, "load", cursorMs_, s.ms);
+    cursorMs_ += s.ms;
+  }
+}
+
+void FrameSink::PrintLastFrame() const {
+  if (rendered_ == 0) return;
+  std::printf("frame: %.2f ms", frame_.totalMs);
+  if (rendered_ > 1) std::printf(" (best of %d: %.2f ms, mean %.2f ms)", rendered_, bestMs_, sumMs_ / rendered_);
+  std::printf(" [");
+  for (size_t i = 0; i < frame_.passes.size(); ++i)
+    std::printf("%s%s %.2f", i ? ", " : "", frame_.passes[i].name.c_str(), frame_.passes[i].durationMs);
+  std::printf("]\n");
+}
+
+}  // namespace softmol::cli

@@ -1,0 +1,58 @@
+// cli/frame_sink.h — where `softmol render` sends its frames: one renderer started once per
+// run (the CPU passes, or the GL mirror with its EGL context) for every input and frame, the
+// PNG/EXR writers (with the AOVs), the profile trace and the frame timings.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cli/load_molecule.h"
+#include "cli/profile_trace.h"
+#include "common/timer.h"
+#include "effects/frame_renderer.h"
+#include "io/error.h"
+
+namespace softmol::cli {
+
+enum class OutputKind { kPng, kExr };
+// By the name's extension (.png or .exr); anything else throws InputError at `where`.
+OutputKind OutputKindOf(const std::string& path, const io::SourceLocation& where = {"-o"});
+
+class FrameSink {
+ public:
+  // `backend` "gl" starts the GL mirror now (its start-up is paid once per run); `threads` > 0
+  // also caps llvmpipe's threads.
+  FrameSink(const std::string& backend, int threads);
+  ~FrameSink();
+  FrameSink(const FrameSink&) = delete;
+  FrameSink& operator=(const FrameSink&) = delete;
+
+  // Renders into frame(). `resources` keeps one structure's work (the AO bake, the pyramid)
+  // from frame to frame on the CPU backend.
+  void Render(const raster::PrimitiveScene& scene, const raster::Camera& camera, const effects::RenderOptions& options,
+              effects::FrameResources& resources);
+  // Writes frame() to `path` (a PNG also gets NAME.aov.exr when AOVs were asked for).
+  void Write(const std::string& path, OutputKind kind, const effects::RenderOptions& options);
+
+  // Loading steps in the trace, laid end to end from now.
+  void AddSteps(const std::vector<StepTime>& steps);
+  void WriteTrace(const std::string& path) const { trace_.Write(path); }
+  // "frame: 12.3 ms (best of 5: …) [pass ms, …]" for the last frame, when one was rendered.
+  void PrintLastFrame() const;
+
+  const effects::RenderedFrame& frame() const { return frame_; }
+  int rendered() const { return rendered_; }
+
+ private:
+  Clock::time_point start_ = Clock::now();
+  double cursorMs_ = 0;  // where the next trace event starts
+  ProfileTrace trace_;
+  effects::RenderedFrame frame_;
+  int rendered_ = 0;
+  double bestMs_ = 1e300, sumMs_ = 0;
+  struct GlMirror;  // the EGL context and the GL frame renderer (cli/frame_sink.cpp)
+  std::unique_ptr<GlMirror> gl_;  // null: the CPU passes
+};
+
+}  // namespace softmol::cli
