@@ -106,10 +106,18 @@ TEST(ColorSchemes, ChainResidueBfactorAndSelectionsColourTheirAtoms) {
     const size_t ordinal = size_t(std::find(chainOrder.begin(), chainOrder.end(), ChainOf(m, i)) - chainOrder.begin());
     EXPECT_EQ(byChain[i], ChainColor(ordinal));
     const auto cls = kClass.find(ResnOf(m, i));
-    if (cls != kClass.end()) EXPECT_EQ(byResidue[i], cls->second) << ResnOf(m, i);
-    if (ResnOf(m, i) == "HOH") EXPECT_EQ(byResidue[i], AtomColors(m, {})[i]) << "unclassified residues keep theirs";
-    if (m.bFactor[i] == bLo) EXPECT_EQ(byB[i], Viridis(0.0));
-    if (m.bFactor[i] == bHi) EXPECT_EQ(byB[i], Viridis(1.0));
+    if (cls != kClass.end()) {
+      EXPECT_EQ(byResidue[i], cls->second) << ResnOf(m, i);
+    }
+    if (ResnOf(m, i) == "HOH") {
+      EXPECT_EQ(byResidue[i], AtomColors(m, {})[i]) << "unclassified residues keep theirs";
+    }
+    if (m.bFactor[i] == bLo) {
+      EXPECT_EQ(byB[i], Viridis(0.0));
+    }
+    if (m.bFactor[i] == bHi) {
+      EXPECT_EQ(byB[i], Viridis(1.0));
+    }
     const bool a = ChainOf(m, i) == "A";
     const uint32_t want = a && ResnOf(m, i) == "LYS" ? 0x0000FF : a ? 0xFF0000 : 0xFFFFFF;
     EXPECT_EQ(layered[i], want) << "the last rule that reaches an atom wins";
