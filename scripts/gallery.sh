@@ -13,7 +13,7 @@ presets="qutemol publication illustrative shadows dynamic plain"
 # 1tii: a 5,684-atom protein complex (baked AO by default); 3sn6: a receptor with its ligand
 # (the dynamic preset's halo shows it through the protein).
 molecules="1tii 3sn6"
-size=480x360
+size=360x270
 {
   echo "# Gallery"
   echo
