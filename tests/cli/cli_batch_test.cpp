@@ -35,7 +35,7 @@ TEST(CliBatch, SeveralInputsContinuePastABadOneAndExitTwo) {
   const auto dir = ScratchDir("batch_bad_input");
   const auto bad = dir / "broken.pdb";
   std::ofstream(bad) << "ATOM      1  CA  ALA A   1     not-a-number\n";
-  const CommandResult r = RunSoftmol("render " + Q(Data("pept.pdb")) + " " + Q(bad) + " " + Q(Data("1CRN.cif")) +
+  const CommandResult r = RunSoftmol("render --ao none " + Q(Data("pept.pdb")) + " " + Q(bad) + " " + Q(Data("1CRN.cif")) +
                                          kSmall + "-o " + Q(dir / "{stem}.png"),
                                      dir);
   EXPECT_EQ(r.exitCode, 2) << r.err;
@@ -54,14 +54,14 @@ TEST(CliBatch, SeveralInputsContinuePastABadOneAndExitTwo) {
     EXPECT_NE(line.find(" ms"), std::string::npos) << line;
   }
   // The batch renders each input as a run of its own does.
-  const CommandResult alone = RunSoftmol("render " + Q(Data("1CRN.cif")) + kSmall + "-q -o " + Q(dir / "alone.png"), dir);
+  const CommandResult alone = RunSoftmol("render --ao none " + Q(Data("1CRN.cif")) + kSmall + "-q -o " + Q(dir / "alone.png"), dir);
   ASSERT_EQ(alone.exitCode, 0) << alone.err;
   EXPECT_EQ(Slurp(dir / "1CRN.png"), Slurp(dir / "alone.png"));
 }
 
 TEST(CliBatch, IndexNamesInputsInOrder) {
   const auto dir = ScratchDir("batch_index");
-  const CommandResult r = RunSoftmol("render " + Q(Data("pept.pdb")) + " " + Q(Data("pept.pdb")) + kSmall +
+  const CommandResult r = RunSoftmol("render --ao none " + Q(Data("pept.pdb")) + " " + Q(Data("pept.pdb")) + kSmall +
                                          "-q --rotate 0,0,0 -o " + Q(dir / "{index}_{stem}.png"),
                                      dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -74,9 +74,9 @@ TEST(CliBatch, FramesAreNumberedInSequenceOrByFrameIndex) {
   const auto dir = ScratchDir("batch_numbering");
   std::filesystem::create_directories(dir / "seq");
   std::filesystem::create_directories(dir / "frame");
-  CommandResult r = RunSoftmol("render " + kMd + "--frames 0:20:10 -q -o " + Q(dir / "seq/md_%05d.png"), dir);
+  CommandResult r = RunSoftmol("render --ao none " + kMd + "--frames 0:20:10 -q -o " + Q(dir / "seq/md_%05d.png"), dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  r = RunSoftmol("render " + kMd + "--frames 0:20:10 -q --frame-numbers frame -o " + Q(dir / "frame/md_%05d.png"), dir);
+  r = RunSoftmol("render --ao none " + kMd + "--frames 0:20:10 -q --frame-numbers frame -o " + Q(dir / "frame/md_%05d.png"), dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const std::map<std::string, std::string> seq = Pngs(dir / "seq"), frame = Pngs(dir / "frame");
   ASSERT_EQ(seq.size(), 3u);
@@ -116,7 +116,7 @@ TEST(CliBatch, TurntableFramesAreTheRotateRendersAndBakeOnce) {
 
 TEST(CliBatch, TurntableAboutTheHorizontalAxisIsRotateX) {
   const auto dir = ScratchDir("batch_turntable_x");
-  const std::string common = "render " + Q(Data("1CRN.cif")) + kSmall + "--style balls -q ";
+  const std::string common = "render --ao none " + Q(Data("1CRN.cif")) + kSmall + "--style balls -q ";
   CommandResult r = RunSoftmol(common + "--turntable 3:x -o " + Q(dir / "tt_%d.png"), dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   r = RunSoftmol(common + "--rotate 120,0,0 -o " + Q(dir / "rot.png"), dir);
@@ -154,7 +154,7 @@ TEST(CliBatch, ThreeTrajectoryShardsReassembleIntoTheSingleRun) {
 TEST(CliBatch, ShardsSplitTheFramesOfEveryInput) {
   // Two inputs × a 3-frame turntable = 6 images, 4 shards: shard 3 takes the second input's
   // first frame only, shard 0 one frame of each.
-  ExpectShardsReassemble("render " + Q(Data("pept.pdb")) + " " + Q(Data("1CRN.cif")) + kSmall + "--turntable 3",
+  ExpectShardsReassemble("render --ao none " + Q(Data("pept.pdb")) + " " + Q(Data("1CRN.cif")) + kSmall + "--turntable 3",
                          "{stem}_%05d.png", 4, ScratchDir("batch_shard_inputs"));
 }
 

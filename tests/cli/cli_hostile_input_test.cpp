@@ -84,7 +84,7 @@ TEST(CliHostileInput, CoordinateBeyondTheRangeIsAnErrorNamingTheLine) {
   Write(pdb, AtomLine(1, "0.000", "0.000", "0.000") + AtomLine(2, "1.500", "0.000", "0.000") +
                  AtomLine(3, "1e30", "0.000", "0.000"));
   const auto png = dir / "far.png";
-  const CommandResult r = RunSoftmol("render " + Q(pdb) + " -o " + Q(png) + " --size 64x64", dir);
+  const CommandResult r = RunSoftmol("render --ao none " + Q(pdb) + " -o " + Q(png) + " --size 64x64", dir);
   EXPECT_EQ(r.exitCode, 2) << r.err;
   EXPECT_NE(r.err.find("softmol: " + pdb.string() + ":3:"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("beyond"), std::string::npos) << r.err;
@@ -99,7 +99,7 @@ TEST(CliHostileInput, EveryCoordinateAt1e30IsAnErrorNotAWhiteImage) {
   for (int i = 1; i <= 50; ++i) text += AtomLine(i, "1e30", "-1e30", "1e30");
   Write(pdb, text);
   const auto png = dir / "white.png";
-  const CommandResult r = RunSoftmol("render " + Q(pdb) + " -o " + Q(png) + " --size 64x64", dir);
+  const CommandResult r = RunSoftmol("render --ao none " + Q(pdb) + " -o " + Q(png) + " --size 64x64", dir);
   EXPECT_EQ(r.exitCode, 2) << r.err;
   EXPECT_NE(r.err.find(pdb.string() + ":1:"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(png));

@@ -39,7 +39,7 @@ std::vector<std::string> Outputs(const fs::path& dir) {
 TEST(CliOutput, DirectoryAsOutputIsNamed) {
   const auto dir = ScratchDir("out_directory");
   fs::create_directory(dir / "out.png");
-  const CommandResult r = RunSoftmol("render " + kPept + " --size 32x24 -o '" + (dir / "out.png").string() + "'", dir);
+  const CommandResult r = RunSoftmol("render --ao none " + kPept + " --size 32x24 -o '" + (dir / "out.png").string() + "'", dir);
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.err.find("out.png: the output is a directory"), std::string::npos) << r.err;
 }
@@ -47,7 +47,7 @@ TEST(CliOutput, DirectoryAsOutputIsNamed) {
 TEST(CliOutput, MissingFolderIsNamed) {
   const auto dir = ScratchDir("out_missing");
   const std::string folder = (dir / "no" / "such").string();
-  const CommandResult r = RunSoftmol("render " + kPept + " --size 32x24 -o '" + folder + "/out.png'", dir);
+  const CommandResult r = RunSoftmol("render --ao none " + kPept + " --size 32x24 -o '" + folder + "/out.png'", dir);
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.err.find("the output folder '" + folder + "' does not exist"), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("Success"), std::string::npos) << r.err;
@@ -72,7 +72,7 @@ TEST(CliOutput, FullDiskExitsNonZeroAndLeavesNothing) {
   if (!disk.mounted) GTEST_SKIP() << "cannot mount a tmpfs here (not root?): " << std::strerror(errno);
   for (const std::string name : {"full.png", "full.exr"}) {
     const std::string out = (disk.dir / name).string();
-    const CommandResult r = RunSoftmol("render " + k1tii + " --size 400x300 -o '" + out + "'", scratch);
+    const CommandResult r = RunSoftmol("render --ao none " + k1tii + " --size 400x300 -o '" + out + "'", scratch);
     EXPECT_EQ(r.exitCode, 2) << name << ": " << r.err;
     EXPECT_NE(r.err.find(out), std::string::npos) << r.err;
     // zlib's PNG path reports errno; OpenEXR words it its own way.

@@ -19,7 +19,7 @@ const std::string kPept = std::string("'") + Data("pept.pdb") + "'";
 TEST(CliRender, PngHasSizeBackgroundAndMolecule) {
   const auto dir = ScratchDir("render_png");
   const std::string out = (dir / "pept.png").string();
-  const CommandResult r = RunSoftmol("render " + kPept + " -o '" + out + "' --size 160x120 --background 102030", dir);
+  const CommandResult r = RunSoftmol("render --ao none " + kPept + " -o '" + out + "' --size 160x120 --background 102030", dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const io::Image8 img = io::ReadImage8(out);
   ASSERT_EQ(img.width, 160);
@@ -45,7 +45,7 @@ TEST(CliRender, SameBytesForOneAndTwoThreadsAndAcrossRuns) {
     name += std::to_string(k);
     name += ".png";
     const std::string out = (dir / name).string();
-    const CommandResult r = RunSoftmol("render '" + Data("il2.pdb") + "' -o '" + out +
+    const CommandResult r = RunSoftmol("render --ao none '" + Data("il2.pdb") + "' -o '" + out +
                                            "' --size 200x150 --style balls --ssaa 2 --threads " + threads[k],
                                        dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -118,7 +118,7 @@ TEST(CliRender, PngWithAovsWritesSiblingExrAndTransparentAlpha) {
 TEST(CliRender, ProfileListsFramesAndPasses) {
   const auto dir = ScratchDir("render_profile");
   const std::string trace = (dir / "trace.json").string();
-  const CommandResult r = RunSoftmol("render " + kPept + " -o '" + (dir / "p.png").string() +
+  const CommandResult r = RunSoftmol("render --ao none " + kPept + " -o '" + (dir / "p.png").string() +
                                          "' --size 64x48 --repeat 3 --profile '" + trace + "'",
                                      dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -208,7 +208,7 @@ TEST(CliRender, TrajectoryFramesBecomeNumberedImagesThatMove) {
 
 TEST(CliRender, HighlightDrawsAHaloAroundTheLigand) {
   const auto dir = ScratchDir("render_highlight");
-  const std::string common = "render '" + Data("3sn6.pdb") + "' --size 200x150 --rotate 0,180,0 -o '";
+  const std::string common = "render --ao none '" + Data("3sn6.pdb") + "' --size 200x150 --rotate 0,180,0 -o '";
   const std::string plainPath = (dir / "plain.png").string(), haloPath = (dir / "halo.png").string();
   const CommandResult plain = RunSoftmol(common + plainPath + "'", dir);
   ASSERT_EQ(plain.exitCode, 0) << plain.err;
@@ -240,7 +240,7 @@ TEST(CliRender, HaloTrailLeavesAWakeAcrossFrames) {
   const char* trail[2] = {"1e6", "1e-6"};
   for (int t = 0; t < 2; ++t) {
     const std::string pattern = (dir / (std::string(t ? "short" : "long") + "_%03d.png")).string();
-    const CommandResult r = RunSoftmol("render '" + Data("md.pdb") + "' --trajectory '" + Data("md.xtc") +
+    const CommandResult r = RunSoftmol("render --ao none '" + Data("md.pdb") + "' --trajectory '" + Data("md.xtc") +
                                            "' --frames 0:20:10 --highlight ion --highlight-trail " + trail[t] +
                                            " -o '" + pattern + "' --size 100x75",
                                        dir);
@@ -255,7 +255,7 @@ TEST(CliRender, HaloTrailLeavesAWakeAcrossFrames) {
 TEST(CliRender, PsfTopologyWithDcdFrames) {
   const auto dir = ScratchDir("render_dcd");
   const std::string out = (dir / "ala.png").string();
-  const CommandResult r = RunSoftmol("render '" + Data("ala3.psf") + "' --trajectory '" + Data("ala3.dcd") +
+  const CommandResult r = RunSoftmol("render --ao none '" + Data("ala3.psf") + "' --trajectory '" + Data("ala3.dcd") +
                                          "' --frames 1 -o '" + out + "' --size 64x48 --style balls",
                                      dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -266,7 +266,7 @@ TEST(CliRender, EveryStyleRenders) {
   const auto dir = ScratchDir("render_styles");
   for (const char* style : {"spacefill", "balls", "licorice", "ellipsoids", "tube"}) {
     const std::string out = (dir / (std::string(style) + ".png")).string();
-    const CommandResult r = RunSoftmol("render '" + Data("1CRN.cif") + "' -o '" + out + "' --size 96x72 --style " + style, dir);
+    const CommandResult r = RunSoftmol("render --ao none '" + Data("1CRN.cif") + "' -o '" + out + "' --size 96x72 --style " + style, dir);
     EXPECT_EQ(r.exitCode, 0) << style << ": " << r.err;
     EXPECT_TRUE(std::filesystem::exists(out)) << style;
   }
@@ -281,7 +281,7 @@ TEST(CliRender, TubeShowsTheBackboneTheSameForAnyThreadCount) {
     name += std::to_string(k);
     name += ".png";
     const std::string out = (dir / name).string();
-    const CommandResult r = RunSoftmol("render '" + Data("1tii.pdb") + "' -o '" + out +
+    const CommandResult r = RunSoftmol("render --ao none '" + Data("1tii.pdb") + "' -o '" + out +
                                            "' --size 160x120 --background 000000 --style tube " + args[k],
                                        dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -295,7 +295,7 @@ TEST(CliRender, TubeShowsTheBackboneTheSameForAnyThreadCount) {
   for (size_t i = 0; i < img.pixels.size(); i += 3) covered += img.pixels[i] || img.pixels[i + 1] || img.pixels[i + 2];
   EXPECT_GT(covered, size_t(160 * 120) / 50);
   EXPECT_LT(covered, size_t(160 * 120) / 2);
-  const CommandResult bad = RunSoftmol("render '" + Data("1tii.pdb") + "' -o '" + (dir / "x.png").string() +
+  const CommandResult bad = RunSoftmol("render --ao none '" + Data("1tii.pdb") + "' -o '" + (dir / "x.png").string() +
                                            "' --style tube --helix ribbon",
                                        dir);
   EXPECT_EQ(bad.exitCode, 2);

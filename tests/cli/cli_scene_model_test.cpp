@@ -17,7 +17,7 @@ namespace {
 
 std::string Render(const std::string& args, const std::filesystem::path& dir, const std::string& name) {
   const std::string out = (dir / name).string();
-  const CommandResult r = RunSoftmol("render " + args + " -q -o '" + out + "'", dir);
+  const CommandResult r = RunSoftmol("render --ao none " + args + " -q -o '" + out + "'", dir);
   EXPECT_EQ(r.exitCode, 0) << args << ": " << r.err;
   return Slurp(out);
 }
@@ -42,7 +42,7 @@ TEST(CliSceneModel, LayersAndColoursFromFlagsAndSceneFilesAreTheSame) {
 TEST(CliSceneModel, PrintedViewReproducesTheSameBytes) {
   const auto dir = ScratchDir("scene_model_view");
   const std::string mol = "'" + Data("1tii.pdb") + "' --size 200x150 --rotate 10,20,0 --zoom 1.3";
-  const CommandResult first = RunSoftmol("render " + mol + " --print-view -o '" + (dir / "a.png").string() + "'", dir);
+  const CommandResult first = RunSoftmol("render --ao none " + mol + " --print-view -o '" + (dir / "a.png").string() + "'", dir);
   ASSERT_EQ(first.exitCode, 0) << first.err;
   const size_t at = first.out.find("--view '");
   ASSERT_NE(at, std::string::npos) << first.out;
@@ -89,18 +89,18 @@ TEST(CliSceneModel, TheMdTrajectoryShowsItsPeptideNotTheWaterBox) {
 
 TEST(CliSceneModel, EmptyLayersWarnAndDefaultsAreSensible) {
   const auto dir = ScratchDir("scene_model_defaults");
-  CommandResult r = RunSoftmol("render '" + Data("pept.pdb") + "' --size 64x48 -q --show 'resn XYZ=balls'", dir);
+  CommandResult r = RunSoftmol("render --ao none '" + Data("pept.pdb") + "' --size 64x48 -q --show 'resn XYZ=balls'", dir);
   EXPECT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.err.find("warning: the layer 'resn XYZ' selects no atom"), std::string::npos) << r.err;
   // The default output is the input's stem, in the working directory.
   EXPECT_TRUE(std::filesystem::exists("pept.png"));
   std::filesystem::remove("pept.png");
-  r = RunSoftmol("render '" + Data("pept.pdb") + "' --size 96 -q -o '" + (dir / "w.png").string() + "'", dir);
+  r = RunSoftmol("render --ao none '" + Data("pept.pdb") + "' --size 96 -q -o '" + (dir / "w.png").string() + "'", dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const io::Image8 img = io::ReadImage8((dir / "w.png").string());
   EXPECT_EQ(img.width, 96);
   EXPECT_EQ(img.height, 72) << "a width alone keeps 4:3";
-  r = RunSoftmol("render '" + Data("pept.pdb") + "' --hide all -o '" + (dir / "none.png").string() + "'", dir);
+  r = RunSoftmol("render --ao none '" + Data("pept.pdb") + "' --hide all -o '" + (dir / "none.png").string() + "'", dir);
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.err.find("nothing to draw"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "none.png"));
@@ -120,7 +120,7 @@ TEST(CliSceneModel, CommandLineErrorsAreOneSoftmolLine) {
                         Case{"--background notacolour", "softmol: --background: expected a colour"},
                         Case{"--view 'eye=1,2,3'", "softmol: --view: a view needs"},
                         Case{"--orient sideways", "softmol: --orient: unknown value 'sideways'"}}) {
-    const CommandResult r = RunSoftmol("render " + pept + c.args, dir);
+    const CommandResult r = RunSoftmol("render --ao none " + pept + c.args, dir);
     EXPECT_EQ(r.exitCode, 2) << c.args;
     EXPECT_EQ(r.err.rfind(c.mustStartWith, 0), 0u) << c.args << " → " << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;
