@@ -54,6 +54,11 @@ TEST(AoDirectionSet, IsDeterministic) {
 }
 
 TEST(AoDirectionSet, LargestEmptyCapShrinksAsNGrows) {
+#if defined(__SANITIZE_ADDRESS__)
+  // A geometric measurement (brute-force empty caps over 10^5 probes): the release suite runs
+  // it; under ASan at -O0 it took 26-78 s of CI and covers no memory the other tests miss.
+  GTEST_SKIP() << "measurement: run in the release suite";
+#endif
   float previous = 10.0f;
   for (int n : {16, 32, 64, 128, 256, 512}) {
     const float cap = LargestEmptyCap(Make(n), kProbes);
@@ -70,6 +75,11 @@ TEST(AoDirectionSet, LargestEmptyCapShrinksAsNGrows) {
 
 // Probed here with 100k directions, not the 20k the smoothing's accept test uses.
 TEST(AoDirectionSet, SmoothingDoesNotWorsenTheSpread) {
+#if defined(__SANITIZE_ADDRESS__)
+  // A geometric measurement (brute-force empty caps over 10^5 probes): the release suite runs
+  // it; under ASan at -O0 it took 26-78 s of CI and covers no memory the other tests miss.
+  GTEST_SKIP() << "measurement: run in the release suite";
+#endif
   for (int n : {16, 32, 64, 128, 256, 512}) {
     const float raw = LargestEmptyCap(Make(n, 0), kProbes);
     const float smooth = LargestEmptyCap(Make(n), kProbes);

@@ -40,7 +40,12 @@ CommandResult Render(const std::string& molecule, const std::string& flags, cons
 using Passes = std::vector<std::string>;
 
 TEST(CliLooks, FlaglessRenderBakesAoForSmallStructures) {
-  for (const char* molecule : {"pept.pdb", "1tii.pdb"}) {
+#if defined(__SANITIZE_ADDRESS__)
+  const char* molecules[] = {"pept.pdb"};  // 1tii's bake is the release suite's (a minute under ASan)
+#else
+  const char* molecules[] = {"pept.pdb", "1tii.pdb"};
+#endif
+  for (const char* molecule : molecules) {
     const CommandResult r = Render(molecule, "", "auto_small");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_EQ(PassesRun(r.out), (Passes{"gbuffer", "ao bake", "baked ao lookup", "shading"})) << molecule << r.out;
