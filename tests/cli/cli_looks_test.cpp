@@ -30,10 +30,15 @@ std::vector<std::string> PassesRun(const std::string& out) {
   return names;
 }
 
+// A small bake (16 directions, 256² maps) wherever AO is baked: these tests are about which
+// passes run, and the shipped 128 × 1024² bake takes a minute under ASan.
+const std::string kSmallBake = " --ao-directions 16 --ao-map 256 ";
+
 CommandResult Render(const std::string& molecule, const std::string& flags, const std::string& name,
                      const std::string& size = "64x48") {
   const auto dir = ScratchDir("looks_" + name);
-  return RunSoftmol("render '" + Data(molecule) + "' -o '" + (dir / "x.png").string() + "' --size " + size + " " + flags,
+  return RunSoftmol("render '" + Data(molecule) + "' -o '" + (dir / "x.png").string() + "' --size " + size +
+                        kSmallBake + flags,
                     dir);
 }
 
@@ -74,7 +79,7 @@ TEST(CliLooks, AoNoneAndAoStrengthZeroGiveTheSameColourAndRunNoAo) {
   const auto dir = ScratchDir("looks_strength");
   const std::string none = (dir / "none.png").string(), zero = (dir / "zero.png").string(),
                     half = (dir / "half.png").string();
-  const std::string pept = "render '" + Data("pept.pdb") + "' --size 96x72 -o '";
+  const std::string pept = "render '" + Data("pept.pdb") + "' --size 96x72" + kSmallBake + "-o '";
   const CommandResult a = RunSoftmol(pept + none + "' --ao none", dir);
   ASSERT_EQ(a.exitCode, 0) << a.err;
   const CommandResult b = RunSoftmol(pept + zero + "' --ao baked --ao-strength 0", dir);
