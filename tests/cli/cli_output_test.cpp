@@ -90,7 +90,7 @@ TEST(CliOutput, ConcurrentRendersToOneNameLeaveOneWholeImage) {
   std::string cmd;
   for (int k = 0; k < 2; ++k) {
     const std::string size = k == 0 ? "320x240" : "256x192";
-    cmd += "(" + exe + " render " + kPept + " --size " + size + " -o '" + out + "' 2>'" + (dir / ("err" + std::to_string(k))).string() +
+    cmd += "(" + exe + " render --ao none " + kPept + " --size " + size + " -o '" + out + "' 2>'" + (dir / ("err" + std::to_string(k))).string() +
            "'; echo $? >'" + (dir / ("rc" + std::to_string(k))).string() + "') & ";
   }
   ASSERT_EQ(std::system((cmd + "wait").c_str()), 0);
@@ -113,7 +113,7 @@ TEST(CliOutput, SigtermWhileWritingLeavesNoTemporary) {
   ASSERT_GE(pid, 0);
   if (pid == 0) {
     if (freopen("/dev/null", "w", stderr) == nullptr) _exit(126);
-    execl(SOFTMOL_EXE, SOFTMOL_EXE, "render", Data("pept.pdb").c_str(), "--size", "6000x4000", "-o", out.c_str(),
+    execl(SOFTMOL_EXE, SOFTMOL_EXE, "render", Data("pept.pdb").c_str(), "--size", "6000x4000", "--ao", "none", "-o", out.c_str(),
           static_cast<char*>(nullptr));
     _exit(127);
   }
