@@ -154,5 +154,17 @@ TEST(CliParams, ValuesGivenAloneTakeTheirImplicitValue) {
   EXPECT_FLOAT_EQ(Parse("x.pdb").options.contourWidth, 0.0f);
 }
 
+// The default light rig (cli/presets.cpp) is ShadingOptions' own defaults: naming it changes
+// nothing but the --lighting value itself.
+TEST(CliParams, DefaultLightingIsTheDefault) {
+  const io::ParamTable<RenderArgs> params = RenderParams();
+  const RenderArgs plain = Parse("x.pdb"), named = Parse("x.pdb --lighting default");
+  for (const io::Param<RenderArgs>& p : params) {
+    if (p.name != "lighting") {
+      EXPECT_EQ(p.get(named), p.get(plain)) << p.name;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace softmol::cli
