@@ -12,8 +12,7 @@
 #include <string>
 
 #include "effects/frame_renderer.h"
-#include "gl/context_egl.h"
-#include "gl/frame_renderer.h"
+#include "bench/gl_session.h"
 #include "io/bonds.h"
 #include "io/structure_reader.h"
 #include "raster/camera.h"
@@ -37,20 +36,7 @@ const raster::PrimitiveScene& Scene(bool balls) {
   return balls ? ballsScene : spacefill;
 }
 
-struct Gl {
-  std::unique_ptr<gl::Context> context;
-  std::unique_ptr<gl::FrameRenderer> renderer;
-  std::string why;
-};
-Gl& GetGl() {
-  static Gl g = [] {
-    Gl s;
-    s.context = gl::Context::Create(s.why);
-    if (s.context) s.renderer = std::make_unique<gl::FrameRenderer>();
-    return s;
-  }();
-  return g;
-}
+using softmol::bench::GetGl;
 
 // range(0): 0 = spacefill, 1 = balls; range(1): 0 = CPU, 1 = GL.
 void BM_Frame1920x1080(benchmark::State& state) {

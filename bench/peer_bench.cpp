@@ -35,8 +35,7 @@
 #include "io/image_io.h"
 #include "raster/camera.h"
 #ifdef SOFTMOL_PEERS_GL
-#include "gl/context_egl.h"
-#include "gl/frame_renderer.h"
+#include "bench/gl_session.h"
 #endif
 
 namespace {
@@ -307,20 +306,7 @@ void EmbreeBuild(benchmark::State& state, int molecule) {
 }
 
 #ifdef SOFTMOL_PEERS_GL
-struct Gl {
-  std::unique_ptr<gl::Context> context;
-  std::unique_ptr<gl::FrameRenderer> renderer;
-  std::string why;
-};
-Gl& GetGl() {
-  static Gl g = [] {
-    Gl s;
-    s.context = gl::Context::Create(s.why);
-    if (s.context) s.renderer = std::make_unique<gl::FrameRenderer>();
-    return s;
-  }();
-  return g;
-}
+using softmol::bench::GetGl;
 
 // The GL mirror's frame (G-buffer + shading + resolve + readback), as bench/gl_bench.cpp times it.
 void GlMirror(benchmark::State& state, int molecule) {

@@ -105,7 +105,7 @@ void ParamInputs::AddBundle(const std::vector<std::pair<std::string, std::string
     const auto it = std::find_if(shapes_.begin(), shapes_.end(), [&](const Shape& s) { return s.name == name; });
     if (it == shapes_.end()) throw io::InternalError("a preset names the unknown option --" + name);
     if (!it->repeatable && Given(name)) continue;
-    given_.push_back({size_t(it - shapes_.begin()), text, where, given_.size()});
+    given_.push_back({size_t(it - shapes_.begin()), text, where, given_.size(), /*bundled=*/true});
   }
 }
 

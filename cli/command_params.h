@@ -22,7 +22,8 @@ struct GivenValue {
   size_t param = 0;  // index in the table
   std::string text;
   io::SourceLocation where;
-  size_t order = 0;  // position among the values given (scene file first, then flags)
+  size_t order = 0;  // position among the values given (bundles first, then the scene file, then flags)
+  bool bundled = false;  // from a preset or light rig (AddBundle), not given by the user
 };
 
 // Type-independent part: the declarations' names and shapes, and the values given.

@@ -233,7 +233,7 @@ RenderArgs RenderCommand::Args() {
   }
   ApplyBundles(params_.inputs());
   params_.Apply(a);
-  a.highlightFromPreset = params_.inputs().Last("highlight").where.file.rfind("--preset", 0) == 0;
+  a.highlightFromPreset = params_.inputs().Last("highlight").bundled;
   effects::CheckRenderOptions(a.options);
   return a;
 }
