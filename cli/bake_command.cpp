@@ -13,6 +13,8 @@
 
 #include <tbb/global_control.h>
 
+#include <CLI/CLI.hpp>
+
 #include "ao/shadow_bake.h"
 #include "cli/bake_options.h"
 #include "cli/commands.h"

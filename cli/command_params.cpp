@@ -1,3 +1,5 @@
+#include <CLI/CLI.hpp>
+
 #include "cli/command_params.h"
 
 #include <algorithm>

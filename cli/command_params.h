@@ -11,9 +11,14 @@
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
-
 #include "io/params.h"
+
+// CLI11's types by name only: its header costs ~10 s of CPU per file that includes it, so only
+// the files that declare options include it (docs/PERFORMANCE.md, "CI").
+namespace CLI {
+class App;
+class Option;
+}  // namespace CLI
 
 namespace softmol::cli {
 

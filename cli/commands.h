@@ -7,14 +7,19 @@
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
-
 #include "cli/bake_options.h"
 #include "cli/command_params.h"
 #include "effects/frame_renderer.h"
 #include "io/image_diff.h"
 #include "raster/representation.h"
 #include "scene/layers.h"
+
+// CLI11's types by name only: its header costs ~10 s of CPU per file that includes it, so only
+// the files that declare options include it (docs/PERFORMANCE.md, "CI").
+namespace CLI {
+class App;
+class Option;
+}  // namespace CLI
 
 namespace softmol::cli {
 

@@ -9,6 +9,8 @@
 #include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
 
+#include <CLI/CLI.hpp>
+
 #include "cli/commands.h"
 #include "cli/load_molecule.h"
 #include "io/error.h"

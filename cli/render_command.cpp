@@ -16,6 +16,8 @@
 
 #include <tbb/global_control.h>
 
+#include <CLI/CLI.hpp>
+
 #include "cli/commands.h"
 #include "cli/frame_sink.h"
 #include "cli/load_molecule.h"

@@ -12,10 +12,18 @@ targets=()
 for src in tests/fuzz/fuzz_*.cpp; do targets+=("$(basename "$src" .cpp)"); done
 if [ -f build/fuzz/CMakeCache.txt ]; then cmake --preset fuzz >/dev/null; else cmake --preset fuzz -G Ninja >/dev/null; fi
 cmake --build --preset fuzz -j "$(nproc 2>/dev/null || echo 2)" --target "${targets[@]}"
-for src in tests/fuzz/fuzz_*.cpp; do
-  name=$(basename "$src" .cpp)
+# One target per core at a time: each still fuzzes for SECONDS, the stage takes 1/nproc the time.
+# Each target's log is printed whole when it ends, so the output stays readable.
+fuzz_one() {  # fuzz_one NAME SECONDS
+  local name=$1 log
   mkdir -p "build/fuzz/corpus/$name"
-  echo "== $name ($secs s)"
-  (cd build/fuzz && "./tests/fuzz/$name" -max_total_time="$secs" -rss_limit_mb=4096 \
-      -timeout=10 "corpus/$name" "../../tests/fuzz/corpus/$name")
-done
+  log=$(mktemp)
+  if (cd build/fuzz && "./tests/fuzz/$name" -max_total_time="$2" -rss_limit_mb=4096 \
+        -timeout=10 "corpus/$name" "../../tests/fuzz/corpus/$name") >"$log" 2>&1; then
+    echo "== $name ($2 s): ok — $(tail -n 1 "$log")"; rm -f "$log"
+  else
+    echo "== $name ($2 s): FAILED"; cat "$log"; rm -f "$log"; return 1
+  fi
+}
+export -f fuzz_one
+printf '%s\n' "${targets[@]}" | xargs -P "$(nproc 2>/dev/null || echo 2)" -I{} bash -c 'fuzz_one "$1" "$2"' _ {} "$secs"
