@@ -89,7 +89,7 @@ TEST(CliBatch, FramesAreNumberedInSequenceOrByFrameIndex) {
 
 TEST(CliBatch, TurntableFramesAreTheRotateRendersAndBakeOnce) {
   const auto dir = ScratchDir("batch_turntable");
-  const std::string common = "render " + Q(Data("pept.pdb")) + kSmall + "--ao baked --ao-directions 16 -q ";
+  const std::string common = "render " + Q(Data("pept.pdb")) + kSmall + "--ao baked --ao-directions 16 --ao-map 256 -q ";
   const CommandResult r =
       RunSoftmol(common + "--turntable 4 --profile " + Q(dir / "trace.json") + " -o " + Q(dir / "tt_%05d.png"), dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;

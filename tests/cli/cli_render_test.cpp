@@ -59,7 +59,7 @@ TEST(CliRender, SameBytesForOneAndTwoThreadsAndAcrossRuns) {
 TEST(CliRender, ExrCarriesAovChannels) {
   const auto dir = ScratchDir("render_exr");
   const std::string out = (dir / "pept.exr").string();
-  const CommandResult r = RunSoftmol("render " + kPept + " -o '" + out + "' --size 64x48 --aov depth,normal,id", dir);
+  const CommandResult r = RunSoftmol("render " + kPept + " -o '" + out + "' --size 64x48 --ao none --aov depth,normal,id", dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const io::ImageFile img = io::ReadExr(out);
   std::vector<std::string> names;
@@ -96,7 +96,7 @@ TEST(CliRender, ExrIsTheSameBytesFromRunToRun) {
   std::string bytes[2];
   for (int k = 0; k < 2; ++k) {
     const std::string out = (dir / ("run" + std::to_string(k) + ".exr")).string();
-    const CommandResult r = RunSoftmol("render " + kPept + " -o '" + out + "' --size 32x24 --aov depth,id", dir);
+    const CommandResult r = RunSoftmol("render " + kPept + " -o '" + out + "' --size 32x24 --ao none --aov depth,id", dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     bytes[k] = Slurp(out);
     if (k == 0) std::this_thread::sleep_for(std::chrono::milliseconds(1100));  // a new timestamp second
@@ -107,7 +107,7 @@ TEST(CliRender, ExrIsTheSameBytesFromRunToRun) {
 TEST(CliRender, PngWithAovsWritesSiblingExrAndTransparentAlpha) {
   const auto dir = ScratchDir("render_sibling");
   const std::string out = (dir / "mol.png").string();
-  const CommandResult r = RunSoftmol("render " + kPept + " -o '" + out + "' --size 64x48 --aov depth --transparent", dir);
+  const CommandResult r = RunSoftmol("render " + kPept + " -o '" + out + "' --size 64x48 --ao none --aov depth --transparent", dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_TRUE(std::filesystem::exists(dir / "mol.aov.exr"));
   const io::Image8 img = io::ReadImage8(out);

@@ -39,7 +39,7 @@ TEST(CliScene, FlagsOverrideTheSceneAndPathsAreRelativeToIt) {
   // Run from another folder: "pept.pdb" must be found beside the scene, not in the cwd.
   const auto elsewhere = ScratchDir("scene_override_cwd");
   const CommandResult r = RunSoftmol("render --scene '" + (dir / "scene.json").string() + "' -o '" + out +
-                                         "' --size 80x60",
+                                         "' --size 80x60 --ao none",
                                      elsewhere);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const io::Image8 img = io::ReadImage8(out);
@@ -51,7 +51,7 @@ TEST(CliScene, TheDocumentedExampleRenders) {
   const auto dir = ScratchDir("scene_example");
   const std::string out = (dir / "example.png").string();
   const CommandResult r = RunSoftmol("render --scene '" + std::string(SOFTMOL_DATA_DIR) +
-                                         "/../docs/example_scene.json' --size 96x72 --ssaa 1 --ao-directions 16 -o '" +
+                                         "/../docs/example_scene.json' --size 96x72 --ssaa 1 --ao-directions 16 --ao-map 256 -o '" +
                                          out + "'",
                                      dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
