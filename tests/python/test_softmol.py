@@ -129,7 +129,7 @@ def test_from_arrays():
 
 
 def test_repr_png_shows_in_a_notebook():
-    png = softmol.load(PEPT).render(size=(32, 24), transparent=True)._repr_png_()
+    png = softmol.load(PEPT).render(size=(32, 24), ao="none", transparent=True)._repr_png_()
     assert png[:8] == b"\x89PNG\r\n\x1a\n"
     assert PilImage.open(__import__("io").BytesIO(png)).mode == "RGBA"
 
