@@ -329,7 +329,7 @@ void Renderer::Impl::Prepare(const Molecule::Impl& m, const Options& options) {
     optionsKey = key;
   }
   if (!sink || backend != args.backend) {
-    sink = std::make_unique<cli::FrameSink>(args.backend, args.threads);
+    sink = std::make_unique<cli::FrameSink>(args.backend, args.threads, /*trace=*/false);
     backend = args.backend;
   }
   if (scene && sceneMolecule == m.id && sceneMoving == m.moved) return;
