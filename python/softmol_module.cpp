@@ -57,6 +57,11 @@ softmol::OptionValue OptionText(const std::string& name, py::handle value) {
   throw softmol::Error("--" + name + ": cannot use a value of type " + py::str(value.get_type()).cast<std::string>());
 }
 
+// A str or any os.PathLike (pathlib.Path) as a file name.
+std::string PathOf(const py::object& path) {
+  return py::module_::import("os").attr("fspath")(path).cast<std::string>();
+}
+
 softmol::Options OptionsOf(const py::kwargs& kwargs) {
   softmol::Options options;
   for (const auto& [key, value] : kwargs) {
@@ -133,7 +138,8 @@ PYBIND11_MODULE(softmol, m) {
         const auto& i = self.cast<const softmol::Image&>();
         return View(i.id, i, 1, self);
       }, "uint32 (height, width): primitive id, 0xFFFFFFFF on the background; None unless asked")
-      .def("save", [](const softmol::Image& i, const std::string& path) {
+      .def("save", [](const softmol::Image& i, const py::object& file) {
+        const std::string path = PathOf(file);
         if (path.size() < 4 || path.substr(path.size() - 4) != ".png")
           throw softmol::Error(path + ": Image.save writes PNG; for EXR use Molecule.render_file");
         i.SavePng(path);
@@ -169,12 +175,12 @@ PYBIND11_MODULE(softmol, m) {
            "Renders with softmol render's options as keywords (size=(1280, 960), ao='baked', style='balls', "
            "color='chain', show=['ligand=balls'], aovs=('depth', 'ao'), ao_directions=64, ...); positions= moves "
            "the atoms first (a trajectory frame)")
-      .def("render_file", [](PyMolecule& self, const std::string& path, const py::kwargs& kwargs) {
+      .def("render_file", [](PyMolecule& self, const py::object& path, const py::kwargs& kwargs) {
         const softmol::Options options = OptionsOf(kwargs);
-              self.renderer.RenderToFile(self.molecule, path, options);
+        self.renderer.RenderToFile(self.molecule, PathOf(path), options);
       }, py::arg("path"), "Writes the frame as softmol render -o PATH does (.png, with NAME.aov.exr for AOVs, or .exr)");
 
-  m.def("load", [](const std::string& path, const std::string& assembly) {
-    return PyMolecule{softmol::Molecule::Load(path, assembly), softmol::Renderer()};
+  m.def("load", [](const py::object& path, const std::string& assembly) {
+    return PyMolecule{softmol::Molecule::Load(PathOf(path), assembly), softmol::Renderer()};
   }, py::arg("path"), py::arg("assembly") = "", "Reads a PDB or mmCIF file (plain or .gz), as softmol render does");
 }

@@ -24,7 +24,7 @@ def render_frames(topology, trajectory, out_dir, frames=slice(None), **options):
     with warnings.catch_warnings():  # MDAnalysis warns about PDB fields it guesses
         warnings.simplefilter("ignore")
         universe = mda.Universe(str(topology), str(trajectory))
-    molecule = softmol.load(str(topology))
+    molecule = softmol.load(topology)
     if len(molecule) != len(universe.atoms):
         raise SystemExit(f"{topology}: softmol reads {len(molecule)} atoms, MDAnalysis {len(universe.atoms)}")
     out_dir = pathlib.Path(out_dir)
@@ -33,7 +33,7 @@ def render_frames(topology, trajectory, out_dir, frames=slice(None), **options):
     for number, _ in enumerate(universe.trajectory[frames]):
         image = molecule.render(positions=universe.atoms.positions, **options)
         path = out_dir / f"md_{number:05d}.png"
-        image.save(str(path))
+        image.save(path)
         paths.append(path)
     return paths
 

@@ -34,7 +34,7 @@ def command_png(path, *args):
 
 
 def test_load_and_render():
-    mol = softmol.load(PEPT)
+    mol = softmol.load(DATA / "pept.pdb")  # a str or any os.PathLike
     assert len(mol) == mol.atom_count == 107
     assert mol.positions.shape == (107, 3)
     img = mol.render(size=(64, 48), ao="none")
@@ -62,7 +62,7 @@ def test_pixels_are_the_commands_png(tmp_path):
     assert png.shape == (90, 120, 3)
     assert np.array_equal(img.rgba[..., :3], png)
     # The same encoder: save() and _repr_png_ give the command's file, byte for byte.
-    img.save(str(tmp_path / "api.png"))
+    img.save(tmp_path / "api.png")
     assert (tmp_path / "api.png").read_bytes() == (tmp_path / "cli.png").read_bytes()
     assert img._repr_png_() == (tmp_path / "cli.png").read_bytes()
 
