@@ -64,7 +64,7 @@ OutputKind OutputKindOf(const std::string& path, const io::SourceLocation& where
   throw io::InputError(where, "output must end in .png or .exr, got '" + path + "'");
 }
 
-FrameSink::FrameSink(const std::string& backend, [[maybe_unused]] int threads) {
+FrameSink::FrameSink(const std::string& backend, [[maybe_unused]] int threads, bool trace) : tracing_(trace) {
   if (backend != "gl") return;
 #if !SOFTMOL_HAVE_GL
   throw io::InputError({"--backend"}, "this softmol was built without the OpenGL mirror (configure with -DSOFTMOL_BUILD_GL=ON)");
@@ -102,7 +102,8 @@ void FrameSink::Render(const raster::PrimitiveScene& scene, const raster::Camera
 #else
   effects::RenderFrame(scene, camera, options, frame_, &resources);
 #endif
-  trace_.AddFrame(rendered_++, cursorMs_, frame_);
+  if (tracing_) trace_.AddFrame(rendered_, cursorMs_, frame_);
+  ++rendered_;
   cursorMs_ += frame_.totalMs;
   bestMs_ = std::min(bestMs_, frame_.totalMs);
   sumMs_ += frame_.totalMs;
@@ -118,13 +119,13 @@ void FrameSink::Write(const std::string& path, OutputKind kind, const effects::R
     io::WriteExr(path, ToExr(frame_, /*withColor=*/true));
   }
   const double ms = MsSince(w0);
-  trace_.AddComplete("write", "output", cursorMs_, ms);
+  if (tracing_) trace_.AddComplete("write", "output", cursorMs_, ms);
   cursorMs_ += ms;
 }
 
 void FrameSink::AddSteps(const std::vector<StepTime>& steps) {
   for (const StepTime& s : steps) {
-    trace_.AddComplete(s.name, "load", cursorMs_, s.ms);
+    if (tracing_) trace_.AddComplete(s.name, "load", cursorMs_, s.ms);
     cursorMs_ += s.ms;
   }
 }

@@ -22,8 +22,9 @@ OutputKind OutputKindOf(const std::string& path, const io::SourceLocation& where
 class FrameSink {
  public:
   // `backend` "gl" starts the GL mirror now (its start-up is paid once per run); `threads` > 0
-  // also caps llvmpipe's threads.
-  FrameSink(const std::string& backend, int threads);
+  // also caps llvmpipe's threads. `trace` false keeps no profile events (the library's
+  // long-lived renderers would otherwise grow by every frame's events).
+  FrameSink(const std::string& backend, int threads, bool trace = true);
   ~FrameSink();
   FrameSink(const FrameSink&) = delete;
   FrameSink& operator=(const FrameSink&) = delete;
@@ -48,6 +49,7 @@ class FrameSink {
   Clock::time_point start_ = Clock::now();
   double cursorMs_ = 0;  // where the next trace event starts
   ProfileTrace trace_;
+  bool tracing_ = true;
   effects::RenderedFrame frame_;
   int rendered_ = 0;
   double bestMs_ = 1e300, sumMs_ = 0;

@@ -24,6 +24,7 @@
 #include "cli/parse.h"
 #include "cli/presets.h"
 #include "cli/render_jobs.h"
+#include "cli/render_steps.h"
 #include "common/timer.h"
 #include "effects/color.h"
 #include "effects/frame_renderer.h"
@@ -294,7 +295,8 @@ raster::PrimitiveScene FramingScene(const io::Molecule& mol, const raster::Repre
   return framing;
 }
 
-// near/far: --near/--far, else the --view's, else fitted to what is drawn.
+}  // namespace
+
 void FitDepthRange(const RenderArgs& a, const std::optional<scene::View>& view, const raster::PrimitiveScene& drawn,
                    raster::Camera& cam) {
   raster::FitNearFar(cam, drawn);
@@ -303,6 +305,8 @@ void FitDepthRange(const RenderArgs& a, const std::optional<scene::View>& view, 
   if (a.farPlane > 0) cam.farPlane = a.farPlane;
   if (cam.farPlane <= cam.nearPlane) throw io::InputError({"--far"}, "the far plane must be beyond the near plane");
 }
+
+namespace {
 
 // The camera: --view, or --camera, or the oriented (or file-axes) default; then --fov,
 // --ortho, --rotate, a turntable frame's `turn` (degrees about the axes --rotate uses, of the
@@ -343,19 +347,6 @@ raster::Camera FrameCamera(const RenderArgs& a, const std::optional<scene::View>
   return cam;
 }
 
-// What every input of a run shares, checked once before the first input loads: the options
-// that need several flags together, the output kind, the turntable and the shard.
-struct RunPlan {
-  OutputKind kind = OutputKind::kPng;
-  ImageSize size;
-  effects::RenderOptions options;
-  std::optional<io::Selection> highlight;
-  std::optional<scene::View> view;
-  Turntable turntable;
-  Shard shard;
-  size_t framesPerInput = 1;  // without a trajectory: one still, or the turntable's frames
-};
-
 // The checks that need several options together, before anything loads.
 void CheckCombinations(const RenderArgs& a, const RunPlan& p) {
   const effects::RenderOptions& ro = p.options;
@@ -378,7 +369,8 @@ void CheckCombinations(const RenderArgs& a, const RunPlan& p) {
     throw io::InputError({"--ssaa"}, "size × ssaa² is more than 2^28 samples");
 }
 
-// Every option was checked as it was parsed; what remains needs several of them together.
+}  // namespace
+
 RunPlan PlanRun(const RenderArgs& a) {
   if (a.molecules.empty())
     throw io::InputError({"MOLECULE"}, "no molecule: give a file, or \"molecule\" in the --scene file");
@@ -405,21 +397,10 @@ RunPlan PlanRun(const RenderArgs& a) {
   return p;
 }
 
-// One structure ready to render: the molecule, what is drawn, the options that follow from it
-// (the bake's atlas, the highlighted spheres) and the camera that frames it.
-struct InputScene {
-  LoadedMolecule loaded;
-  scene::ResolvedLooks looks;
-  raster::RepresentationOptions rep;
-  raster::Representation drawn;
-  raster::PrimitiveScene framing;
-  effects::RenderOptions options;
-  raster::Camera camera;  // before any turntable turn
-};
-
-InputScene PrepareInput(const RenderArgs& a, const RunPlan& plan, const std::string& input, FrameSink& sink) {
+InputScene PrepareInput(const RenderArgs& a, const RunPlan& plan, LoadedMolecule loaded, const std::string& input,
+                        bool moving, FrameSink& sink) {
   InputScene s;
-  s.loaded = LoadMolecule(input, a.assembly, a.trajectory, scene::NeedsBonds(a.layers));
+  s.loaded = std::move(loaded);
   sink.AddSteps(s.loaded.steps);
   const Clock::time_point t0 = Clock::now();
   s.looks = scene::ResolveLooks(s.loaded.molecule, a.layers);
@@ -431,7 +412,7 @@ InputScene PrepareInput(const RenderArgs& a, const RunPlan& plan, const std::str
     throw io::InputError({input}, "nothing to draw: every atom is hidden (see --style, --show, --hide, --show-solvent)");
   s.options = plan.options;
   if (s.options.ao == effects::AoMode::kAuto)
-    s.options.ao = effects::AutomaticAo(s.drawn.scene.size(), a.bake.directions, !a.trajectory.empty());
+    s.options.ao = effects::AutomaticAo(s.drawn.scene.size(), a.bake.directions, moving);
   if (s.options.ao == effects::AoMode::kBaked) s.options.bake = MakeBakeOptions(a.bake, s.drawn.scene);
   if (plan.highlight) s.options.highlight.spheres = HighlightedSpheres(*plan.highlight, a, s.loaded.molecule, s.drawn);
   s.framing = FramingScene(s.loaded.molecule, s.drawn);
@@ -439,6 +420,8 @@ InputScene PrepareInput(const RenderArgs& a, const RunPlan& plan, const std::str
   if (a.printView) std::printf("--view '%s'\n", scene::FormatView(scene::ViewOf(s.camera)).c_str());
   return s;
 }
+
+namespace {
 
 // The frames of one input, validated before any renders: trajectory frame indices, or the
 // turntable's steps, or {0} for a still.
@@ -504,7 +487,8 @@ void PrintSummary(const RenderArgs& a, const RunPlan& plan, const std::string& i
 void RenderInput(const RenderArgs& a, const RunPlan& plan, const std::string& input, size_t index, size_t firstJob,
                  FrameSink& sink) {
   const Clock::time_point start = Clock::now();
-  InputScene s = PrepareInput(a, plan, input, sink);
+  InputScene s = PrepareInput(a, plan, LoadMolecule(input, a.assembly, a.trajectory, scene::NeedsBonds(a.layers)),
+                              input, !a.trajectory.empty(), sink);
   std::unique_ptr<io::TrajectoryReader> trajectory;
   const std::vector<size_t> frames = InputFrames(a, plan, s, trajectory);
   if (trajectory) CheckOutputPatterns(a.output, a.molecules, frames.size() > 1);

@@ -23,6 +23,16 @@ std::string ExecutableFolder() {
   return exe.substr(0, exe.find_last_of('/'));
 }
 
+// The folder of the binary this code is linked into: the executable, or libsoftmol.so (api/),
+// which may be loaded by any program (python3).
+std::string OwnFolder() {
+  Dl_info info{};
+  if (dladdr(reinterpret_cast<void*>(&OwnFolder), &info) == 0 || info.dli_fname == nullptr) return {};
+  const std::string self = info.dli_fname;
+  const size_t slash = self.find_last_of('/');
+  return slash == std::string::npos ? std::string() : self.substr(0, slash);
+}
+
 std::vector<std::string> Candidates() {
   std::vector<std::string> c;
   if (const char* env = std::getenv("SOFTMOL_OIIO_MODULE"); env != nullptr && *env != '\0') c.push_back(env);
@@ -31,6 +41,8 @@ std::vector<std::string> Candidates() {
     c.push_back(dir + "/" + kModuleName);
     c.push_back(dir + "/../lib/softmol/" + kModuleName);
   }
+  if (const std::string own = OwnFolder(); !own.empty() && own != dir)
+    c.push_back(own + "/softmol/" + kModuleName);  // installed beside libsoftmol.so: lib/softmol/
 #ifdef SOFTMOL_OIIO_MODULE_BUILD_PATH
   if (c.size() < 2 || c[c.size() - 2] != SOFTMOL_OIIO_MODULE_BUILD_PATH) c.push_back(SOFTMOL_OIIO_MODULE_BUILD_PATH);
 #endif

@@ -17,6 +17,8 @@ packages=(
   libegl-dev libopengl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri glslang-tools  # gl/ mirror (llvmpipe)
   parallel   # GNU parallel: the shard test (tests/cli/cli_batch_test.cpp) runs the README's one-liner
   slurmctld slurmd slurm-client   # a one-node Slurm cluster for the job-array test (tests/cli/cli_slurm_test.cpp)
+  pybind11-dev python3-dev   # the Python module (python/)
+  python3-pytest python3-numpy python3-pil python3-mdanalysis   # its tests (tests/python) and the MDAnalysis example
 )
 if [ "${1:-}" = "--peers" ]; then
   packages+=(libembree-dev tachyon python3)
