@@ -13,6 +13,7 @@
 #include <memory>
 #include <optional>
 
+#include <CLI/CLI.hpp>
 #include <tbb/global_control.h>
 
 #include "cli/commands.h"
