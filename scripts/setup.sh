@@ -16,6 +16,7 @@ packages=(
   libegl-dev libopengl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri glslang-tools  # gl/ mirror (llvmpipe)
   parallel   # GNU parallel: the shard test (tests/cli/cli_batch_test.cpp) runs the README's one-liner
   slurmctld slurmd slurm-client   # a one-node Slurm cluster for the job-array test (tests/cli/cli_slurm_test.cpp)
+  python3-matplotlib   # the plots of `softmol study` (scripts/study_plot.py)
 )
 if [ "${1:-}" = "--peers" ]; then
   packages+=(libembree-dev tachyon python3)
