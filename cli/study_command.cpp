@@ -114,7 +114,10 @@ std::string SummaryHeader(const StudyArgs& a, const StudyScene& s) {
 }
 
 std::string MethodSummary(const study::MethodResult& r) {
-  std::string md = "\n## " + r.plan.name + "\n\nError: " + r.errorName + ". Ground truth: " + r.reference + ".\n\n";
+  std::string md = "\n## " + r.plan.name + "\n\nError: " + r.errorName + ". Ground truth: " + r.reference +
+                   ".\n\nShipped defaults (`softmol render`):";
+  for (size_t k = 0; k < r.plan.knobs.size(); ++k) md += " --" + r.plan.knobs[k].name + " " + r.defaults[k];
+  md += ".\n\n";
   md += "| point | setup ms | frame ms | error | p95 | front |\n|---|---:|---:|---:|---:|:-:|\n";
   for (const study::Row& row : r.rows)
     md += "| " + row.label + (row.point.isDefault ? " (shipped)" : "") + " | " + Format("%.2f", row.setupMs) + " | " +
@@ -229,11 +232,11 @@ StudyArgs StudyCommand::Args() {
 int RunStudy(const StudyArgs& a) {
   std::vector<study::MethodPlan> plans = study::DefaultPlans();
   if (!a.knobs.empty()) plans = study::SelectKnobs(plans, SplitCommas(a.knobs), {"--knobs"});
-  MakeOutputFolder(a.output);
   std::unique_ptr<tbb::global_control> threads;
   if (a.threads > 0)
     threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(a.threads));
-  const StudyScene s = LoadScene(a);
+  const StudyScene s = LoadScene(a);  // a bad molecule leaves no folder behind
+  MakeOutputFolder(a.output);
   study::StudyOptions options;
   options.repeats = a.repeats;
   options.maxReferenceRays = a.referenceRays;
