@@ -107,7 +107,7 @@ std::string SummaryHeader(const StudyArgs& a, const StudyScene& s) {
          " spheres and " + std::to_string(sc.cylinders.size()) + " cylinders (spacefill); " + a.size + ", " +
          std::to_string(a.views) + " view(s) turning about the vertical axis; times are the median of " +
          std::to_string(a.repeats) + " repetition(s) per view, on " +
-         (a.threads > 0 ? std::to_string(a.threads) : std::string("all")) + " thread(s), SIMD target " +
+         (a.threads > 0 ? std::to_string(a.threads) + " thread(s)" : std::string("every core")) + ", SIMD target " +
          raster::ActiveSimdTarget() + ". Cost = setup (the AO bake, paid once per structure) + frame (the "
          "method's own passes per frame; the whole frame for SSAA). The front is the Pareto front of "
          "(cost, error).\n";

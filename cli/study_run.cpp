@@ -225,38 +225,43 @@ void ScoreAgainstReferenceAo(const std::vector<MethodResult*>& results,
 
 // --- anti-aliasing: 16×16 samples a pixel ----------------------------------------------------
 
-// The colour of each pixel averaged over its kAaReferenceScale² samples, and the silhouette
-// mask: pixels whose samples see more than one primitive (or a primitive and the background).
+// The colour of each pixel of `cam` averaged over its s×s samples in `f` (rendered at s× the
+// size), and the silhouette mask: pixels whose samples see more than one primitive (or a
+// primitive and the background).
+Output BoxDownsample(const effects::RenderedFrame& f, const raster::Camera& cam, int s) {
+  Output v;
+  v.values.assign(size_t(cam.width) * cam.height * 4, 0.0f);
+  v.mask.assign(size_t(cam.width) * cam.height, 0);
+  const size_t bigWidth = size_t(cam.width) * size_t(s);
+  for (int y = 0; y < cam.height; ++y)
+    for (int x = 0; x < cam.width; ++x) {
+      double sum[4] = {0, 0, 0, 0};
+      const uint32_t first = f.id[size_t(y * s) * bigWidth + size_t(x * s)];
+      bool edge = false;
+      for (int sy = 0; sy < s; ++sy)
+        for (int sx = 0; sx < s; ++sx) {
+          const size_t i = size_t(y * s + sy) * bigWidth + size_t(x * s + sx);
+          for (int c = 0; c < 4; ++c) sum[c] += f.rgba[4 * i + size_t(c)];
+          edge |= f.id[i] != first;
+        }
+      const size_t pixel = size_t(y) * cam.width + size_t(x);
+      for (int c = 0; c < 4; ++c) v.values[4 * pixel + size_t(c)] = float(sum[c] / double(s * s));
+      v.mask[pixel] = edge;
+    }
+  return v;
+}
+
+// The anti-aliasing ground truth of every view: kAaReferenceScale² samples a pixel.
 Output AaReference(const StudyInput& in, const StudyOptions& so) {
   effects::RenderOptions o = MethodOptions(Method::kAntialiasing, so.base, *in.scene);
   o.ssaa = 1;
   o.aovs = effects::kAovId;
-  const int s = kAaReferenceScale;
   std::vector<Output> views;
   for (const raster::Camera& cam : in.views) {
     raster::Camera big = cam;
-    big.width *= s;
-    big.height *= s;
-    const effects::RenderedFrame f = effects::RenderFrame(*in.scene, big, o);
-    Output v;
-    v.values.assign(size_t(cam.width) * cam.height * 4, 0.0f);
-    v.mask.assign(size_t(cam.width) * cam.height, 0);
-    for (int y = 0; y < cam.height; ++y)
-      for (int x = 0; x < cam.width; ++x) {
-        double sum[4] = {0, 0, 0, 0};
-        const uint32_t first = f.id[size_t(y * s) * big.width + size_t(x * s)];
-        bool edge = false;
-        for (int sy = 0; sy < s; ++sy)
-          for (int sx = 0; sx < s; ++sx) {
-            const size_t i = size_t(y * s + sy) * big.width + size_t(x * s + sx);
-            for (int c = 0; c < 4; ++c) sum[c] += f.rgba[4 * i + size_t(c)];
-            edge |= f.id[i] != first;
-          }
-        const size_t o4 = 4 * (size_t(y) * cam.width + size_t(x));
-        for (int c = 0; c < 4; ++c) v.values[o4 + size_t(c)] = float(sum[c] / double(s * s));
-        v.mask[size_t(y) * cam.width + size_t(x)] = edge;
-      }
-    views.push_back(std::move(v));
+    big.width *= kAaReferenceScale;
+    big.height *= kAaReferenceScale;
+    views.push_back(BoxDownsample(effects::RenderFrame(*in.scene, big, o), cam, kAaReferenceScale));
   }
   return Concatenate(views);
 }
@@ -314,6 +319,24 @@ void ScoreShadows(MethodResult& result, const std::vector<std::vector<Output>>& 
                      "renderer's per-sample shadow buffer)";
 }
 
+// Every method's errors against its ground truth; the AO methods share one reference.
+void ScoreAll(const std::vector<MethodPlan>& plans, std::vector<MethodResult>& results,
+              std::vector<std::vector<std::vector<Output>>>& outputs, const StudyInput& in, const StudyOptions& so) {
+  std::vector<MethodResult*> aoResults;
+  std::vector<std::vector<Output>> aoOutputs;  // per AO method and point: its views end to end
+  for (size_t m = 0; m < plans.size(); ++m) {
+    if (plans[m].method == Method::kAntialiasing) ScoreAa(results[m], outputs[m], AaReference(in, so));
+    if (plans[m].method == Method::kShadows) ScoreShadows(results[m], outputs[m], in, so);
+    if (plans[m].method != Method::kBakedAo && plans[m].method != Method::kConeAo) continue;
+    aoResults.push_back(&results[m]);
+    std::vector<Output> points;
+    for (const std::vector<Output>& views : outputs[m]) points.push_back(Concatenate(views));
+    aoOutputs.push_back(std::move(points));
+    outputs[m].clear();
+  }
+  if (!aoResults.empty()) ScoreAgainstReferenceAo(aoResults, aoOutputs, in, so);
+}
+
 void MarkFront(MethodResult& r) {
   std::vector<double> cost, error;
   for (const Row& row : r.rows) cost.push_back(row.setupMs + row.frameMs), error.push_back(row.error.mean);
@@ -346,26 +369,7 @@ std::vector<MethodResult> RunStudy(const std::vector<MethodPlan>& plans, const S
     }
   }
   if (so.progress) so.progress(done, total, "reference", "ground truth");
-  std::vector<MethodResult*> aoResults;
-  for (size_t m = 0; m < plans.size(); ++m) {
-    if (plans[m].method == Method::kAntialiasing) ScoreAa(results[m], outputs[m], AaReference(in, so));
-    if (plans[m].method == Method::kShadows) ScoreShadows(results[m], outputs[m], in, so);
-  }
-  std::vector<std::vector<std::vector<Output>>> aoViews;
-  for (size_t m = 0; m < plans.size(); ++m)
-    if (plans[m].method == Method::kBakedAo || plans[m].method == Method::kConeAo) {
-      aoResults.push_back(&results[m]);
-      aoViews.push_back(std::move(outputs[m]));
-    }
-  if (!aoResults.empty()) {
-    std::vector<std::vector<Output>> flat;
-    for (auto& method : aoViews) {
-      std::vector<Output> points;
-      for (auto& views : method) points.push_back(Concatenate(views));
-      flat.push_back(std::move(points));
-    }
-    ScoreAgainstReferenceAo(aoResults, flat, in, so);
-  }
+  ScoreAll(plans, results, outputs, in, so);
   for (MethodResult& r : results) MarkFront(r);
   return results;
 }
