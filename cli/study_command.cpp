@@ -30,6 +30,16 @@ extern char** environ;
 namespace softmol::cli {
 namespace {
 
+constexpr const char* kStudyHelp =
+    "Each method's knobs are swept one at a time around the shipped defaults, plus the product of "
+    "the two that interact (baked: ao-patch x ao-map; cone: cones x ao-grid; shadows: pcf-samples x "
+    "pcf-pretest). Times are the frame's own per-pass profile (median of --repeats); errors are "
+    "against a ground truth of the same frames: the ray-traced reference AO (baked, cone), 256 "
+    "samples a pixel on silhouette pixels (ssaa), 256 PCF taps on an 8192^2 map (shadows).\n"
+    "DIR gets METHOD.csv per method, summary.md and METHOD.png (error against cost, the Pareto "
+    "front joined, the shipped default circled; scripts/study_plot.py, python3-matplotlib). "
+    "A bad option or molecule writes nothing.";
+
 std::vector<std::string> SplitCommas(std::string_view text) {
   std::vector<std::string> parts;
   for (size_t start = 0; start <= text.size();) {
@@ -218,6 +228,7 @@ io::ParamTable<StudyArgs> StudyParams() {
 StudyCommand::StudyCommand(CLI::App& app) : params_(StudyParams()) {
   command_ = app.add_subcommand("study", "What each accuracy knob costs in time and error (CSV, summary.md, plots)");
   command_->add_option("MOLECULE", molecule_, "PDB or mmCIF file")->required();
+  command_->footer(kStudyHelp);
   params_.AddTo(*command_);
 }
 
