@@ -21,7 +21,7 @@ def read_rows(path):
         return list(reader)
 
 
-def plot(path, rows, plt):
+def plot(path, rows, plt, ticker):
     cost = [max(float(r["cost_ms"]), 1e-3) for r in rows]  # log axis: no zero
     error = [float(r["error"]) for r in rows]
     fig, ax = plt.subplots(figsize=(6.4, 4.2), dpi=80)
@@ -37,6 +37,10 @@ def plot(path, rows, plt):
             ax.scatter([c], [e], s=160, facecolors="none", edgecolors="tab:red", linewidths=1.5,
                        label="shipped default")
     ax.set_xscale("log")
+    plain = ticker.FuncFormatter(lambda v, _: f"{v:g}")  # 2, 5, 10 rather than 2x10^0
+    ax.xaxis.set_major_formatter(plain)
+    ax.xaxis.set_minor_formatter(plain if max(cost) / min(cost) < 20 else ticker.NullFormatter())
+    ax.tick_params(axis="x", which="minor", labelsize=6)
     ax.set_xlabel("cost per frame, ms (setup + frame)")
     ax.set_ylabel(rows[0]["error_name"] if len(rows[0]["error_name"]) < 60 else "error")
     ax.set_title(f"{rows[0]['method']}: {rows[0]['error_name']}"[:90], fontsize=8)
@@ -54,6 +58,7 @@ def main():
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
+        from matplotlib import ticker
     except ImportError:
         sys.exit("study_plot: matplotlib is missing (apt-get install python3-matplotlib)")
     csvs = sorted(pathlib.Path(sys.argv[1]).glob("*.csv"))
@@ -62,7 +67,7 @@ def main():
     for path in csvs:
         rows = read_rows(path)
         if rows:
-            plot(path, rows, plt)
+            plot(path, rows, plt, ticker)
 
 
 if __name__ == "__main__":
