@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # scripts/study.sh [MOLECULE...] — regenerates docs/study/: `softmol study` on the shipped
-# molecules (every knob on pept and 1tii; or only those named), each into docs/study/<molecule>/
+# molecules (every knob on pept and 1tii, the per-frame ones on 4JSV; or only those named), each into docs/study/<molecule>/
 # (CSVs, summary.md, plots, table.txt: what the command printed), then docs/study/README.md:
 # for each shipped default, its error and whether it lies on its method's Pareto front. Each run
 # is sized to take a few minutes on 2 cores; sizes, views and repetitions are in each summary,
@@ -11,7 +11,7 @@ build="${SOFTMOL_BUILD:-$root/build/release}"
 softmol="$build/cli/softmol"
 [ -x "$softmol" ] || { echo "study.sh: build $softmol first (cmake --build $build --target softmol)" >&2; exit 2; }
 out="$root/docs/study"
-all=(pept 1tii)
+all=(pept 1tii 4JSV)
 [ $# -gt 0 ] && molecules=("$@") || molecules=("${all[@]}")
 mkdir -p "$out"
 
@@ -33,6 +33,9 @@ for m in "${molecules[@]}"; do
     pept) run pept pept.pdb --size 160x120 --views 2 --repeats 3 --reference-rays 8192 ;;
     # 53 times the atoms: one view keeps it within minutes.
     1tii) run 1tii 1tii.pdb --size 160x120 --views 1 --repeats 2 --reference-rays 8192 ;;
+    # 22,194 atoms: the per-frame methods only (the bake sweep would take tens of minutes here).
+    4JSV) run 4JSV 4JSV.pdb --size 160x120 --views 1 --repeats 2 --reference-rays 8192 \
+            --knobs cones,ao-grid,ssaa,pcf-samples,pcf-pretest,shadow-map ;;
     *) echo "study.sh: unknown molecule $m (known: ${all[*]})" >&2; exit 2 ;;
   esac
 done
