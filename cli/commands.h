@@ -1,4 +1,4 @@
-// cli/commands.h — the subcommands of `softmol` (info, render, bake, diff): each declares its options on a CLI11 app
+// cli/commands.h — the subcommands of `softmol` (info, render, bake, diff, study): each declares its options on a CLI11 app
 // (Add*Command, or a command object whose options come from parameter declarations,
 // io/params.h) and runs from the parsed values (Run*). Errors are thrown as io::InputError
 // naming the file or option; main.cpp reports them.
@@ -137,5 +137,32 @@ class DiffCommand {
   CommandParams<DiffArgs> params_;
 };
 int RunDiff(const DiffArgs& args);
+
+// `softmol study MOLECULE -o DIR`: every accuracy knob swept, priced in time and in error
+// (cli/study.h); CSVs, summary.md and plots into DIR.
+struct StudyArgs {
+  std::string molecule;
+  std::string knobs;       // --knobs a,b,...: "" = every knob
+  std::string size = "160x120";
+  int views = 1;
+  int repeats = 3;
+  int referenceRays = 8192;  // the reference AO's cap
+  std::string assembly;
+  int threads = 0;
+  std::string output = "study";
+};
+io::ParamTable<StudyArgs> StudyParams();
+class StudyCommand {
+ public:
+  explicit StudyCommand(CLI::App& app);
+  StudyArgs Args();  // after parsing; throws io::InputError for a bad value
+  CLI::App* app() const { return command_; }
+
+ private:
+  CLI::App* command_ = nullptr;
+  std::string molecule_;
+  CommandParams<StudyArgs> params_;
+};
+int RunStudy(const StudyArgs& args);
 
 }  // namespace softmol::cli

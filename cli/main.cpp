@@ -50,7 +50,7 @@ std::string ParseErrorMessage(const CLI::App& app, const CLI::ParseError& e) {
 }
 
 int Run(CLI::App& app, int argc, char** argv, cli::InfoArgs& info, cli::RenderCommand& render,
-        cli::BakeCommand& bake, cli::DiffCommand& diff) {
+        cli::BakeCommand& bake, cli::DiffCommand& diff, cli::StudyCommand& study) {
   if (const char* env = std::getenv("SOFTMOL_SIMD"); env && *env)
     raster::ForceSimdTarget(env, "SOFTMOL_SIMD");
   try {
@@ -64,6 +64,7 @@ int Run(CLI::App& app, int argc, char** argv, cli::InfoArgs& info, cli::RenderCo
   if (app.got_subcommand("render")) return cli::RunRender(render.Args());
   if (app.got_subcommand("bake")) return cli::RunBake(bake.Args());
   if (app.got_subcommand("diff")) return cli::RunDiff(diff.Args());
+  if (app.got_subcommand("study")) return cli::RunStudy(study.Args());
   return io::kExitBadInput;
 }
 
@@ -85,7 +86,8 @@ int main(int argc, char** argv) {
     cli::RenderCommand render(app);
     cli::BakeCommand bake(app);
     cli::DiffCommand diff(app);
-    return Run(app, argc, argv, info, render, bake, diff);
+    cli::StudyCommand study(app);
+    return Run(app, argc, argv, info, render, bake, diff, study);
   } catch (const io::InputError& e) {
     std::fprintf(stderr, "softmol: %s\n", e.what());
     return io::kExitBadInput;

@@ -19,6 +19,7 @@ packages=(
   slurmctld slurmd slurm-client   # a one-node Slurm cluster for the job-array test (tests/cli/cli_slurm_test.cpp)
   pybind11-dev python3-dev   # the Python module (python/)
   python3-pytest python3-numpy python3-pil python3-mdanalysis   # its tests (tests/python) and the MDAnalysis example
+  python3-matplotlib   # the plots of `softmol study` (scripts/study_plot.py)
 )
 if [ "${1:-}" = "--peers" ]; then
   packages+=(libembree-dev tachyon python3)
