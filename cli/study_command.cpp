@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <memory>
 
+#include <CLI/CLI.hpp>
 #include <tbb/global_control.h>
 
 #include "cli/commands.h"
