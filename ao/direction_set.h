@@ -1,6 +1,6 @@
 // ao/direction_set.h — the light directions of the AO bake (Tarini et al. 2006, §4): subdivide
-// an octahedron until there are enough vertices, keep N of them as N/2 antipodal pairs chosen by
-// farthest-point sampling, then Laplacian smoothing on the sphere (steps that would grow the
+// an octahedron until there are many more vertices than N (64 N, up to 65,538), keep N of them
+// as N/2 antipodal pairs chosen by farthest-point sampling, then Laplacian smoothing on the sphere (steps that would grow the
 // largest empty cap are not taken). Deterministic: no random numbers, a fixed order, the same
 // bits from run to run and for any thread count (the accept test probes with libm's cos/sin, so
 // two C libraries could in principle decide a step differently). Baking draws the shadow maps

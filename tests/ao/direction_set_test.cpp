@@ -8,8 +8,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <glm/geometric.hpp>
+#include <random>
 #include <stdexcept>
 
 namespace softmol::ao {
@@ -96,12 +98,59 @@ TEST(AoDirectionSet, SmoothingDoesNotWorsenTheSpread) {
     std::printf("N=%d largest empty cap: unsmoothed %.4f, smoothed %.4f rad\n", n, raw, smooth);
     EXPECT_LE(smooth, raw + kProbeSpacing) << n;
   }
-  // And it does something: at N = 256 and 512 the cap shrinks by more than the probe spacing
-  // (measured: 0.195 → 0.157 and 0.161 → 0.143 rad).
-  for (int n : {256, 512})
-    EXPECT_LT(LargestEmptyCap(Make(n), kProbes) + kProbeSpacing,
-              LargestEmptyCap(Make(n, 0), kProbes))
-        << n;
+  // Since the selection draws from a dense candidate set, smoothing rarely finds a step that
+  // does not grow the cap (measured: N = 64 0.339 → 0.331 rad, N = 128 within the probe
+  // spacing, the others unchanged); it stays as
+  // the paper's guard for the counts where it helps.
+}
+
+// What the bake does with the set: AO at a point is the cosine-weighted fraction of directions
+// that reach the light. Here the occluder is a cap (the directions ω with a·ω > t) and the
+// integral over the hemisphere of n, for 200 seeded (n, a, t), is compared with the same
+// estimate from a dense Fibonacci sphere. A set that leaves holes (farthest-point selection
+// from too few candidates did: 128 and 512 directions scored like 64 and 256) breaks the fall.
+double IntegrationRmsError(const std::vector<glm::vec3>& dirs) {
+  constexpr int kDense = 50000, kQueries = 200;
+  std::vector<glm::dvec3> dense(kDense);
+  for (int i = 0; i < kDense; ++i) {
+    const double z = 1.0 - (2.0 * i + 1.0) / kDense, r = std::sqrt(1.0 - z * z), phi = 2.399963229728653 * i;
+    dense[size_t(i)] = {r * std::cos(phi), r * std::sin(phi), z};
+  }
+  auto estimate = [](const auto& set, const glm::dvec3& n, const glm::dvec3& a, double t) {
+    double lit = 0, all = 0;
+    for (const auto& w : set) {
+      const double c = glm::dot(n, glm::dvec3(w));
+      if (c <= 0) continue;
+      all += c;
+      if (glm::dot(a, glm::dvec3(w)) > t) lit += c;
+    }
+    return lit / all;
+  };
+  std::mt19937 rng(7);
+  std::normal_distribution<double> gauss;
+  std::uniform_real_distribution<double> threshold(-0.5, 0.9);
+  auto unit = [&] { return glm::normalize(glm::dvec3(gauss(rng), gauss(rng), gauss(rng))); };
+  double sum = 0;
+  for (int q = 0; q < kQueries; ++q) {
+    const glm::dvec3 n = unit(), a = unit();
+    const double t = threshold(rng);
+    const double e = estimate(dirs, n, a, t) - estimate(dense, n, a, t);
+    sum += e * e;
+  }
+  return std::sqrt(sum / kQueries);
+}
+
+TEST(AoDirectionSet, IntegrationErrorFallsAsNGrows) {
+  // Measured: 64 0.027, 128 0.019, 256 0.0097, 512 0.0066 (with the sparse candidates used
+  // before, on a similar query set: 128 0.025, 256 0.015, 512 0.024 — this test failed at 512).
+  double previous = 1.0;
+  for (int n : {64, 128, 256, 512}) {
+    if (n > kLargestSet) continue;
+    const double e = IntegrationRmsError(Make(n));
+    std::printf("N=%d integration RMS error %.4f\n", n, e);
+    EXPECT_LT(e, 0.85 * previous) << n;
+    previous = e;
+  }
 }
 
 TEST(AoDirectionSet, RejectsBadCounts) {
