@@ -108,11 +108,12 @@ TEST(ConeTraceAo, SameBitsForOneAndTwoThreads) {
 }
 
 // Mean absolute error (accessibility units, over visible pixels) against the 256-ray ground
-// truth, spacefill, 160×120, default pyramid (128³) and options. The reference's own noise
-// (σ ≈ 0.03 per pixel at 256 rays) averages out over the ~10⁴ pixels. Measured (x86-64, GCC 12):
+// truth, spacefill, 160×120, default pyramid (64³) and options. The reference's own noise
+// (σ ≈ 0.03 per pixel at 256 rays) averages out over the ~10⁴ pixels. Measured (x86-64, GCC 12;
+// with the 128³ pyramid before the study chose 64³: 0.082 0.061 0.038 and 0.118 0.069 0.045):
 //            3 cones  5 cones  9 cones
-//   pept     0.082    0.061    0.038
-//   il2      0.118    0.069    0.045
+//   pept     0.081    0.060    0.040
+//   il2      0.105    0.058    0.056
 // The thresholds sit ~20% above these, to catch a regression in the pyramid, the cone set or
 // the lookup, not to pass any AO at all (a constant 1 scores 0.20 on pept and 0.31 on il2).
 // ConeAoOptions::startOffset (0.8 Å) was chosen on these two molecules (0.6 to 1.2 Å tried;
@@ -123,7 +124,7 @@ TEST(ConeTraceAo, MeanAbsoluteErrorAgainstReference) {
     const char* file;
     double limit[3];  // 3, 5, 9 cones
   };
-  const Case cases[] = {{"pept.pdb", {0.10, 0.075, 0.048}}, {"il2.pdb", {0.14, 0.085, 0.055}}};
+  const Case cases[] = {{"pept.pdb", {0.10, 0.075, 0.048}}, {"il2.pdb", {0.13, 0.070, 0.068}}};
   for (const Case& c : cases) {
     SCOPED_TRACE(c.file);
     const Fixture f = Make(c.file, raster::Style::kSpacefill, 160, 120);

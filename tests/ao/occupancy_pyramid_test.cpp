@@ -86,7 +86,7 @@ TEST(OccupancyPyramid, BondMatchesFormula) {
 
 TEST(OccupancyPyramid, CoarserLevelsAreMeansOfChildren) {
   OccupancyPyramid p;
-  BuildOccupancyPyramid(Il2Balls(), {}, p);
+  BuildOccupancyPyramid(Il2Balls(), {.resolution = 128}, p);
   ASSERT_EQ(p.levels.size(), 5u);  // 128 .. 8
   for (size_t l = 1; l < p.levels.size(); ++l) {
     const int r = p.levels[l].resolution;
@@ -163,8 +163,8 @@ TEST(OccupancyPyramid, ReusedWhenNothingMoved) {
   EXPECT_FALSE(UpdateOccupancyPyramid(scene, {}, p));
   scene.spheres.z[7] += 1e-9;
   EXPECT_TRUE(UpdateOccupancyPyramid(scene, {}, p));
-  EXPECT_TRUE(UpdateOccupancyPyramid(scene, {.resolution = 64}, p));
-  EXPECT_FALSE(UpdateOccupancyPyramid(scene, {.resolution = 64}, p));
+  EXPECT_TRUE(UpdateOccupancyPyramid(scene, {.resolution = 128}, p));  // not the default
+  EXPECT_FALSE(UpdateOccupancyPyramid(scene, {.resolution = 128}, p));
 }
 
 }  // namespace

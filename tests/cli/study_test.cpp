@@ -66,13 +66,13 @@ TEST(StudySweep, DefaultFirstThenOneAtATimeThenTheProduct) {
 TEST(StudySweep, ProductStrideKeepsBothEnds) {
   const MethodPlan plan{Method::kConeAo, "cone-ao", {{"cones", {"3", "5", "9"}}, {"ao-grid", {"32", "64", "128", "256"}}}, 0,
                   1, 2};
-  // The default (9, 128); cones 3, 5; grid 32, 64, 256; then the product cones {3, 9} × grid
-  // {32, 128, 256} adds only (3, 32) and (3, 256): the others are already there.
+  // The default (9, 64); cones 3, 5; grid 32, 128, 256; then the product cones {3, 9} × grid
+  // {32, 128, 256} adds (3, 32), (3, 128) and (3, 256): (9, ·) are already there.
   const std::vector<std::string> defaults = Defaults(plan);
   std::vector<std::string> labels;
   for (const SweepPoint& p : SweepPoints(plan, defaults)) labels.push_back(Label(plan, defaults, p));
-  EXPECT_EQ(labels, (std::vector<std::string>{"default", "cones=3", "cones=5", "ao-grid=32", "ao-grid=64", "ao-grid=256",
-                                              "cones=3 ao-grid=32", "cones=3 ao-grid=256"}));
+  EXPECT_EQ(labels, (std::vector<std::string>{"default", "cones=3", "cones=5", "ao-grid=32", "ao-grid=128", "ao-grid=256",
+                                              "cones=3 ao-grid=32", "cones=3 ao-grid=128", "cones=3 ao-grid=256"}));
 }
 
 TEST(StudySweep, KnobSelectionAndUnknownKnobs) {

@@ -86,6 +86,9 @@ Rendered Render(const io::Molecule& m, const SceneLayers& s, const raster::Camer
   raster::FitNearFar(cam, r.drawn.scene);
   effects::RenderOptions ro;
   ro.ao = effects::AoMode::kCone;
+  // A grid finer than the default: with the water shown the grid spans the water box, three
+  // times the protein's, and at 64³ its coarser voxels alone move some samples by > 0.02.
+  ro.pyramid.resolution = 128;
   ro.aovs = effects::kAovId | effects::kAovAo;
   r.frame = effects::RenderFrame(r.drawn.scene, cam, ro);
   if (used) *used = cam;
