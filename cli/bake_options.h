@@ -14,10 +14,10 @@
 namespace softmol::cli {
 
 struct BakeFlags {
-  int directions = 128;              // --ao-directions: light directions (pairs d, −d)
+  int directions = ao::BakeOptions().directions;  // --ao-directions: light directions (pairs d, −d)
   int patch = 0;                     // --ao-patch: patch side, texels (0: largest that fits)
   int texture = 0;                   // --ao-texture: atlas side (0: 1024, or what the patch needs)
-  int map = 1024;                    // --ao-map: mid-surface shadow-map side, texels
+  int map = ao::BakeOptions().shadowMapSize;      // --ao-map: mid-surface shadow-map side, texels
   float bias = ao::BakeOptions().depthBias;            // --ao-bias: Å
   ao::PatchKind sphereMap = ao::PatchKind::kOctahedral;  // --ao-sphere-map: octahedral | cube
 };

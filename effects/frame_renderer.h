@@ -124,8 +124,9 @@ struct FrameResources {
 // fit kAutoBakeBudget, else kBaked (the better AO, Tarini et al.'s, paid once). The bake's cost
 // grows as directions × (one shadow map + primitives): measured on 2 cores (docs/PERFORMANCE.md)
 // 0.28 s for 1tii (5,684 atoms × 128 directions), 0.54 s for 4JSV (22,194 × 128), 9.8 s for
-// the 1.03 M-atom 3J6R assembly; the budget takes 4JSV and leaves the assembly to cone AO,
-// whose pass costs tens of ms a frame at 1080p.
+// the 1.03 M-atom 3J6R assembly (with the 1024² maps of the time; the 512² default since
+// halves the map part); the budget takes 4JSV and leaves the assembly to cone AO, whose pass
+// costs tens of ms a frame at 1080p.
 inline constexpr double kAutoBakeBudget = 3.0e6;  // primitives × directions
 AoMode AutomaticAo(size_t primitives, int directions, bool trajectory);
 
