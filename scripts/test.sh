@@ -3,7 +3,7 @@
 # dependencies and builds on first use, then runs, each timed:
 #   release — the release preset's build and every GoogleTest suite through ctest;
 #   asan    — the debug-asan preset (Debug, ASan + UBSan): its build and the same suite;
-#   fuzz    — every libFuzzer target (scripts/fuzz.sh) for SOFTMOL_FUZZ_SECONDS (default 20) each,
+#   fuzz    — every libFuzzer target (scripts/fuzz.sh) for SOFTMOL_FUZZ_SECONDS (default 15; one target per core) each,
 #             from its saved corpus.
 # SOFTMOL_TEST_STAGES picks stages (default "release asan fuzz"; e.g. "release" while
 # developing). Extra arguments go to ctest. Timings on 2 cores: docs/PERFORMANCE.md.
@@ -28,7 +28,7 @@ for s in $stages; do
              stage "release tests" ctest --preset release -j "$jobs" "$@" ;;
     asan)    stage "debug-asan build" scripts/build.sh debug-asan
              stage "debug-asan tests" ctest --preset debug-asan -j "$jobs" "$@" ;;
-    fuzz)    stage "fuzz (build + ${SOFTMOL_FUZZ_SECONDS:-20} s per target)" scripts/fuzz.sh "${SOFTMOL_FUZZ_SECONDS:-20}" ;;
+    fuzz)    stage "fuzz (build + ${SOFTMOL_FUZZ_SECONDS:-15} s per target)" scripts/fuzz.sh "${SOFTMOL_FUZZ_SECONDS:-15}" ;;
     *) echo "scripts/test.sh: unknown stage '$s' (release, asan, fuzz)" >&2; exit 2 ;;
   esac
 done

@@ -14,6 +14,7 @@
 #include "io/structure_reader.h"
 #include "raster/frame.h"
 #include "raster/representation.h"
+#include "tests/support/sanitizers.h"
 
 namespace softmol::ao {
 namespace {
@@ -22,6 +23,7 @@ class ConeTraceTwins : public hwy::TestWithParamTarget {};
 HWY_TARGET_INSTANTIATE_TEST_SUITE_P(ConeTraceTwins);
 
 TEST_P(ConeTraceTwins, SimdMatchesScalarBitForBit) {
+  SOFTMOL_SKIP_HWY_SCALAR_UNDER_ASAN(GetParam());
   io::Molecule mol = io::ReadMolecule(SOFTMOL_DATA_DIR "/il2.pdb");
   if (mol.bondCount() == 0) io::ComputeDistanceBonds(mol);
   size_t visible = 0, darkened = 0;

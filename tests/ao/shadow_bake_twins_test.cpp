@@ -14,6 +14,7 @@
 #include "io/bonds.h"
 #include "io/structure_reader.h"
 #include "raster/representation.h"
+#include "tests/support/sanitizers.h"
 
 namespace softmol::ao {
 namespace {
@@ -44,6 +45,7 @@ TEST_P(ShadowBakeTwins, MidSurfaceMapsMatchScalar) {
 }
 
 TEST_P(ShadowBakeTwins, AtlasMatchesScalar) {
+  SOFTMOL_SKIP_HWY_SCALAR_UNDER_ASAN(GetParam());
   for (const raster::Style style : {raster::Style::kSpacefill, raster::Style::kBalls})
     for (const PatchKind map : {PatchKind::kOctahedral, PatchKind::kCube}) {
       SCOPED_TRACE(::testing::Message() << "style " << int(style) << " map " << int(map));

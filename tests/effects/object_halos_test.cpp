@@ -16,6 +16,7 @@
 
 #include "effects/frame_renderer.h"
 #include "effects/object_halos.h"
+#include "tests/support/sanitizers.h"
 
 namespace softmol::effects {
 namespace {
@@ -159,6 +160,7 @@ class HaloTwins : public hwy::TestWithParamTarget {};
 HWY_TARGET_INSTANTIATE_TEST_SUITE_P(HaloTwins);
 
 TEST_P(HaloTwins, SimdMatchesScalarBitForBit) {
+  SOFTMOL_SKIP_HWY_SCALAR_UNDER_ASAN(GetParam());
   raster::PrimitiveScene scene;
   for (int i = 0; i < 30; ++i)
     scene.spheres.Add({std::sin(i * 1.3) * 6, std::cos(i * 0.7) * 6, std::sin(i * 2.1) * 5}, 1.6f, 0x3366CC);

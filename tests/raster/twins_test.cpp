@@ -14,6 +14,7 @@
 
 #include "raster/detail/setup.h"
 #include "raster/detail/tile.h"
+#include "tests/support/sanitizers.h"
 #include "tests/support/scenes.h"
 
 namespace softmol::raster {
@@ -133,6 +134,7 @@ void RunScenes(Edges mode, EdgeCounts& counts) {
 }
 
 TEST_P(RasterTileKernelTwins, SimdMatchesScalarBitForBit) {
+  SOFTMOL_SKIP_HWY_SCALAR_UNDER_ASAN(GetParam());
   for (int mode = 0; mode < kEdgeModes; ++mode) {
     EdgeCounts counts;
     RunScenes(Edges(mode), counts);
