@@ -18,19 +18,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string Q(const fs::path& p) {
-  std::string s = "'";
-  s += p.string();
-  s += "'";
-  return s;
-}
-
-// Runs a shell command with its output into `log`; the exit status.
-int Shell(const std::string& cmd, const fs::path& log) {
-  const int status = std::system(("(" + cmd + ") >" + Q(log) + " 2>&1 </dev/null").c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
-
 class Installed : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {

@@ -17,9 +17,6 @@
 namespace softmol::test {
 namespace {
 
-std::string Q(const std::string& s) { return "'" + s + "'"; }
-std::string Q(const std::filesystem::path& p) { return Q(p.string()); }
-
 // Every .png under `dir` by file name, with its bytes.
 std::map<std::string, std::string> Pngs(const std::filesystem::path& dir) {
   std::map<std::string, std::string> files;

@@ -26,15 +26,6 @@ std::vector<uint8_t> Pattern(int w, int h, int channels) {
   return px;
 }
 
-// In single quotes for the shell (appended piece by piece: GCC 12 misreports "'" + std::string,
-// -Wrestrict).
-std::string Q(const fs::path& p) {
-  std::string s = "'";
-  s += p.string();
-  s += "'";
-  return s;
-}
-
 CommandResult Diff(const fs::path& e, const fs::path& a, const std::string& more, const fs::path& dir) {
   return RunSoftmol("diff " + Q(e) + " " + Q(a) + " " + more, dir);
 }

@@ -17,21 +17,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// In single quotes for the shell (appended piece by piece: GCC 12 misreports "'" + std::string,
-// -Wrestrict).
-std::string Q(const fs::path& p) {
-  std::string s = "'";
-  s += p.string();
-  s += "'";
-  return s;
-}
-
-// Runs a shell command, its output into `log`; the exit status.
-int Shell(const std::string& cmd, const fs::path& log) {
-  const int status = std::system((cmd + " >" + Q(log) + " 2>&1 </dev/null").c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
-
 // Configures `source` into `build` against this softmol, then builds it; "" or the log.
 std::string ConfigureAndBuild(const fs::path& source, const fs::path& build) {
   const fs::path log = build.parent_path() / (build.filename().string() + ".configure.txt");

@@ -42,14 +42,6 @@ Timed RunTimed(const std::string& args, const std::filesystem::path& dir) {
   return t;
 }
 
-// Quoted for the shell; appended piece by piece (GCC 12 misreports "'" + std::string, -Wrestrict).
-std::string Q(const std::filesystem::path& p) {
-  std::string q = "'";
-  q += p.string();
-  q += '\'';
-  return q;
-}
-
 // A PDB ATOM record with the coordinates as given (8 columns each).
 std::string AtomLine(int serial, const char* x, const char* y, const char* z) {
   char line[96];

@@ -24,8 +24,6 @@
 namespace softmol::test {
 namespace {
 
-std::string Q(const std::string& s) { return "'" + s + "'"; }
-
 bool OnPath(const std::string& program) {
   return std::system(("command -v " + program + " >/dev/null 2>&1").c_str()) == 0;
 }

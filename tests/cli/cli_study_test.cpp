@@ -11,15 +11,6 @@
 namespace softmol::test {
 namespace {
 
-// In single quotes for the shell (appended piece by piece: GCC 12 misreports "'" + std::string,
-// -Wrestrict).
-std::string Q(const std::filesystem::path& p) {
-  std::string s = "'";
-  s += p.string();
-  s += "'";
-  return s;
-}
-
 void ExpectBadInput(const std::string& args, const std::string& message, const std::filesystem::path& dir) {
   const CommandResult r = RunSoftmol(args, dir);
   EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.err;

@@ -47,4 +47,19 @@ inline std::filesystem::path ScratchDir(const std::string& name) {
 
 inline std::string Data(const std::string& file) { return std::string(SOFTMOL_DATA_DIR) + "/" + file; }
 
+// In single quotes for the shell (appended piece by piece: GCC 12 misreports "'" + std::string,
+// -Wrestrict).
+inline std::string Q(const std::filesystem::path& p) {
+  std::string s = "'";
+  s += p.string();
+  s += "'";
+  return s;
+}
+
+// Runs a shell command (a pipeline or list is fine) with its output into `log`; the exit status.
+inline int Shell(const std::string& cmd, const std::filesystem::path& log) {
+  const int status = std::system(("(" + cmd + ") >" + Q(log) + " 2>&1 </dev/null").c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
 }  // namespace softmol::test
