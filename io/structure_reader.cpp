@@ -13,6 +13,7 @@
 #include "io/structure_reader.h"
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -330,9 +331,11 @@ struct UnknownElements {
   std::string firstAtom, firstResidue;
 };
 
-void AppendModel(const gemmi::Model& model, uint16_t modelIndex, Molecule& mol,
+// Chains of one model are merged by name (into Molecule::chains); `chainByName` persists
+// across calls, so a chain that continues in the next mmCIF chunk stays one Chain.
+void AppendModel(const gemmi::Model& model, uint16_t modelIndex,
+                 std::unordered_map<std::string, uint32_t>& chainByName, Molecule& mol,
                  ReadState& state, UnknownElements& unknown) {
-  std::unordered_map<std::string, uint32_t> chainByName;
   for (const gemmi::Chain& chain : model.chains) {
     auto [it, inserted] = chainByName.emplace(chain.name, uint32_t(mol.chains.size()));
     if (inserted) mol.chains.push_back(Chain{chain.name, modelIndex});
@@ -421,6 +424,57 @@ void AppendModel(const gemmi::Model& model, uint16_t modelIndex, Molecule& mol,
       state.residueSubchain.push_back(res.subchain);
     }
   }
+}
+
+// Takes models as they come (a whole PDB structure, or mmCIF chunks in file order): numbers
+// them by first appearance of their name, keeps only the first unless all are asked for.
+struct ModelAppender {
+  bool allModels = false;
+  std::string fileName;
+  std::unordered_map<std::string, uint16_t> indexOfModel;
+  std::vector<std::unordered_map<std::string, uint32_t>> chainsOfModel;  // per model index
+
+  void Append(const gemmi::Structure& st, Molecule& mol, ReadState& state,
+              UnknownElements& unknown) {
+    for (const gemmi::Model& model : st.models) {
+      auto [it, inserted] = indexOfModel.emplace(model.name, uint16_t(chainsOfModel.size()));
+      if (inserted) {
+        if (chainsOfModel.size() == 65536)
+          throw InputError(SourceLocation(fileName), "too many models (at most 65536)");
+        chainsOfModel.emplace_back();
+      }
+      if (it->second == 0 || allModels)
+        AppendModel(model, it->second, chainsOfModel[it->second], mol, state, unknown);
+    }
+  }
+  uint32_t modelCount() const { return uint32_t(chainsOfModel.size()); }
+};
+
+// _atom_site_anisotrop rows, matched to atoms by serial (_atom_site.id) as gemmi matches them.
+void SetAnisou(const std::vector<std::pair<int, std::array<float, 6>>>& rows, Molecule& mol) {
+  if (rows.empty()) return;
+  std::unordered_map<uint32_t, std::array<float, 6>> bySerial;
+  for (const auto& [serial, u] : rows)
+    if (serial >= 0 && (u[0] != 0.f || u[1] != 0.f || u[2] != 0.f)) bySerial.emplace(serial, u);
+  if (bySerial.empty()) return;
+  mol.anisou.assign(mol.atomCount(), std::array<float, 6>{});
+  for (size_t i = 0; i < mol.atomCount(); ++i)
+    if (const auto it = bySerial.find(mol.serial[i]); it != bySerial.end()) {
+      mol.anisou[i] = it->second;
+      mol.flags[i] |= kHasAnisou;
+    }
+}
+
+// Every atom row of an mmCIF file is one line of at least ~20 bytes (ten required values): that
+// bounds the atoms, so the columns are allocated once instead of growing (a growing vector
+// holds up to twice its size, and both copies while it moves).
+void ReserveAtoms(std::string_view text, Molecule& mol) {
+  const size_t lines = std::min(size_t(std::count(text.begin(), text.end(), '\n')) + 1,
+                                text.size() / 20 + 1);
+  for (auto* v : {&mol.x, &mol.y, &mol.z}) v->reserve(lines);
+  mol.element.reserve(lines), mol.flags.reserve(lines), mol.atomName.reserve(lines);
+  mol.occupancy.reserve(lines), mol.bFactor.reserve(lines), mol.residueIndex.reserve(lines);
+  mol.modelIndex.reserve(lines), mol.serial.reserve(lines);
 }
 
 // An ion: a single-atom residue of a metal or halide that is not water.
@@ -692,6 +746,13 @@ Molecule ReadMoleculeFromMemory(std::string_view bytes, const std::string& name,
   CheckIsText(bytes, name);
   if (format == StructureFormat::kAuto) format = DetectFormat(name, bytes);
 
+  Molecule mol;
+  mol.sourcePath = name;
+  ReadState state;
+  UnknownElements unknown;
+  ModelAppender models{options.allModels, name, {}, {}};
+  // The file's records (title, assemblies, connections, secondary structure); its models are
+  // appended to `mol` and dropped as they come.
   gemmi::Structure st;
   PdbScan scan;
   if (format == StructureFormat::kPdb) {
@@ -701,23 +762,19 @@ Molecule ReadMoleculeFromMemory(std::string_view bytes, const std::string& name,
     } catch (const std::exception& e) {
       throw FromGemmiPdb(name, e.what());
     }
+    models.Append(st, mol, state, unknown);
+    st.models.clear();
   } else {
-    st = detail::ParseMmcif(bytes, name);
+    ReserveAtoms(bytes, mol);
+    detail::MmcifContent cif = detail::ParseMmcif(bytes, name, [&](const gemmi::Structure& chunk) {
+      models.Append(chunk, mol, state, unknown);
+    });
+    st = std::move(cif.records);
+    SetAnisou(cif.anisou, mol);
   }
-
-  Molecule mol;
-  mol.sourcePath = name;
   mol.title = st.get_info("_struct.title");
-  mol.modelCount = static_cast<uint32_t>(st.models.size());
+  mol.modelCount = models.modelCount();
   for (const gemmi::Assembly& a : st.assemblies) mol.assemblyIds.push_back(a.name);
-
-  ReadState state;
-  UnknownElements unknown;
-  const size_t models = options.allModels ? st.models.size() : std::min<size_t>(1, st.models.size());
-  if (models > 65536)
-    throw InputError(SourceLocation(name), "too many models (" + std::to_string(models) + "; at most 65536)");
-  for (size_t m = 0; m < models; ++m)
-    AppendModel(st.models[m], static_cast<uint16_t>(m), mol, state, unknown);
   FlagIons(mol);
   if (mol.atomCount() == 0)
     throw InputError(SourceLocation(name), "no atoms: the file has no ATOM/HETATM records (or _atom_site "

@@ -228,6 +228,82 @@ TEST(StructureReader, MmcifAssembly) {
   EXPECT_GT(m.atomCount(), 0u);
 }
 
+// mmCIF text of `residues` residues of 5 atoms in chain A (model 1), then two residues of chain
+// B, then, when `secondModel`, chain A again as model 2. Atom i sits at x = i·0.01 Å.
+std::string SyntheticMmcif(int residues, bool secondModel) {
+  std::string s =
+      "data_SYN\nloop_\n_atom_site.group_PDB\n_atom_site.id\n_atom_site.type_symbol\n"
+      "_atom_site.label_atom_id\n_atom_site.label_alt_id\n_atom_site.label_comp_id\n"
+      "_atom_site.label_asym_id\n_atom_site.auth_asym_id\n_atom_site.auth_seq_id\n"
+      "_atom_site.pdbx_PDB_ins_code\n_atom_site.Cartn_x\n_atom_site.Cartn_y\n"
+      "_atom_site.Cartn_z\n_atom_site.occupancy\n_atom_site.B_iso_or_equiv\n"
+      "_atom_site.pdbx_PDB_model_num\n";
+  static const char* const kNames[] = {"N", "CA", "C", "O", "CB"};
+  int id = 1;
+  char row[160];
+  auto residue = [&](const char* chain, int number, int model) {
+    for (const char* name : kNames) {
+      std::snprintf(row, sizeof row, "ATOM %d %c %s . ALA %s %s %d ? %.2f 0 0 1 10 %d\n", id,
+                    name[0], name, chain, chain, number, (id - 1) * 0.01, model);
+      s += row;
+      ++id;
+    }
+  };
+  for (int r = 1; r <= residues; ++r) residue("A", r, 1);
+  residue("B", 1, 1), residue("B", 2, 1);
+  if (secondModel)
+    for (int r = 1; r <= 3; ++r) residue("A", r, 2);
+  return s;
+}
+
+TEST(StructureReader, MmcifReadInChunksKeepsChainsAndResiduesWhole) {
+  // 100 k atom rows: the _atom_site loop reaches the reader in chunks of ~65 k rows (see
+  // io/structure_reader_cif.h); chain A spans the cut, and must stay one chain, every residue
+  // whole, in file order.
+  constexpr int kResidues = 20000;
+  ReadOptions all;
+  all.allModels = true;
+  const Molecule m = ReadMoleculeFromMemory(SyntheticMmcif(kResidues, true), "syn.cif",
+                                            StructureFormat::kAuto, all);
+  ExpectConsistent(m);
+  ASSERT_EQ(m.atomCount(), size_t(5 * (kResidues + 2 + 3)));
+  EXPECT_EQ(m.modelCount, 2u);
+  ASSERT_EQ(m.chains.size(), 3u);  // A and B of model 1, A of model 2
+  EXPECT_EQ(m.chains[0].name, "A");
+  EXPECT_EQ(m.chains[2].modelIndex, 1u);
+  ASSERT_EQ(m.residues.size(), size_t(kResidues + 2 + 3));
+  for (size_t r = 0; r < m.residues.size(); ++r) {
+    ASSERT_EQ(m.residues[r].atomCount, 5u) << r;
+    ASSERT_EQ(m.residues[r].chainIndex, r < kResidues ? 0u : r < kResidues + 2 ? 1u : 2u) << r;
+  }
+  for (size_t i = 0; i < m.atomCount(); ++i) ASSERT_NEAR(m.x[i], double(i) * 0.01, 1e-9) << i;
+  // Only the first model unless all are asked for; the models are still counted.
+  const Molecule first = ReadMoleculeFromMemory(SyntheticMmcif(kResidues, true), "syn.cif");
+  EXPECT_EQ(first.atomCount(), size_t(5 * (kResidues + 2)));
+  EXPECT_EQ(first.modelCount, 2u);
+}
+
+TEST(StructureReader, MmcifAnisotropAfterTheAtomsIsApplied) {
+  // _atom_site_anisotrop follows _atom_site, as in PDB files: its rows are matched by id
+  // once the atoms are read.
+  const std::string cif = SyntheticMmcif(1, false) +
+                          "loop_\n_atom_site_anisotrop.id\n_atom_site_anisotrop.U[1][1]\n"
+                          "_atom_site_anisotrop.U[2][2]\n_atom_site_anisotrop.U[3][3]\n"
+                          "_atom_site_anisotrop.U[1][2]\n_atom_site_anisotrop.U[1][3]\n"
+                          "_atom_site_anisotrop.U[2][3]\n"
+                          "2 0.10 0.20 0.30 0.01 0.02 0.03\n6 0.4 0.5 0.6 0 0 0\n";
+  const Molecule m = ReadMoleculeFromMemory(cif, "aniso.cif");
+  ExpectConsistent(m);
+  ASSERT_EQ(m.anisou.size(), m.atomCount());
+  EXPECT_EQ(CountFlag(m, kHasAnisou), 2u);
+  ASSERT_TRUE(m.flags[1] & kHasAnisou);  // id 2
+  EXPECT_FLOAT_EQ(m.anisou[1][0], 0.10f);
+  EXPECT_FLOAT_EQ(m.anisou[1][5], 0.03f);
+  ASSERT_TRUE(m.flags[5] & kHasAnisou);  // id 6: the first atom of chain B
+  EXPECT_FLOAT_EQ(m.anisou[5][2], 0.6f);
+  EXPECT_FALSE(m.flags[0] & kHasAnisou);
+}
+
 TEST(StructureReader, GzipIsTransparent) {
   const std::string src = Data("pept.pdb");
   const std::string gz = (std::filesystem::temp_directory_path() / "softmol_pept_test.pdb.gz").string();
