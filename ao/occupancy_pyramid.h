@@ -46,6 +46,7 @@ struct OccupancyPyramid {
   uint64_t inputHash = 0;           // of the primitives and options (when hashed)
   bool hashed = false;              // set by UpdateOccupancyPyramid, cleared by Build
   bool built = false;
+  size_t repeatsSkipped = 0;        // elements identical to an earlier one (ao/occupancy_pyramid.cpp)
   float At(int level, int x, int y, int z) const;  // 0 outside the grid
 
   // Scratch reused from build to build, so a frame loop does not allocate (or page-fault).

@@ -38,6 +38,7 @@ void ProfileTrace::AddFrame(int index, double startMs, const effects::RenderedFr
                      {"ts", startMs * 1000.0},
                      {"args", {{"primitives set up", s.primitivesSetUp},
                                {"primitives culled", s.primitivesCulled},
+                               {"spheres repeated", s.spheresRepeated},
                                {"bin entries", s.binEntries},
                                {"fragments tested", s.fragmentsTested},
                                {"fragments kept", s.fragmentsKept},

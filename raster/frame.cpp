@@ -18,6 +18,7 @@
 #include <tbb/parallel_for.h>
 
 #include "common/binning.h"
+#include "common/repeats.h"
 #include "common/check.h"
 #include "common/timer.h"
 #include "io/error.h"
@@ -148,12 +149,47 @@ void CopyOut(const detail::TileView& v, uint32_t ch, GBuffer& g) {
 
 bool FiniteNonNegative(float v) { return std::isfinite(v) && v >= 0.0f; }
 
+// A sphere whose constants equal, bit for bit, those of a sphere before it in the draw order
+// can never show: its fragments are the same bits, the depth test is strict, and the earlier one
+// is drawn first. N atoms at one position (placeholder coordinates) would otherwise cost N
+// times every pixel they cover. Identical spheres share a depth bucket, so only buckets holding
+// more than kRepeatCheckFrom entries are searched: real scenes stay far below it (a 10 M-atom
+// assembly puts ~2.5 k in each of the 4096), so their frames pay one comparison per bucket.
+constexpr size_t kRepeatCheckFrom = 16384;
+
+size_t DropRepeatedSpheres(const detail::SetupOutput& su, const Bins& bins,
+                           std::vector<detail::BinEntry>& order) {
+  using namespace detail;
+  std::vector<uint32_t> crowded;
+  for (uint32_t b = 0; b < kDepthBuckets; ++b)
+    if (bins.Size(b) > kRepeatCheckFrom) crowded.push_back(b);
+  if (crowded.empty()) return 0;
+  constexpr uint32_t kDropped = kCulledKey;  // marks an entry to remove (no real code is all ones)
+  tbb::parallel_for(size_t(0), crowded.size(), [&](size_t c) {
+    BinEntry* bucket = order.data() + bins.Begin(crowded[c]);
+    ForEachRepeat<8>(
+        bins.Size(crowded[c]),
+        [&](size_t k) { return bucket[k].code >> kKindShift != kSphereKind; },
+        [&](size_t k) {
+          const SpherePrim& p = su.spheres[bucket[k].code & kIndexMask];
+          const float v[8] = {p.cx, p.cy, p.cz, p.rr, p.c0, p.invR, p.r, p.zMin};
+          return FloatKey(v);
+        },
+        [&](size_t k) { bucket[k].code = kDropped; });
+  });
+  const auto kept = std::remove_if(order.begin(), order.end(),
+                                   [](const BinEntry& e) { return e.code == kDropped; });
+  const size_t dropped = size_t(order.end() - kept);
+  order.erase(kept, order.end());
+  return dropped;
+}
+
 }  // namespace
 
 namespace detail {
 
-void FrontToBackOrder(const SetupOutput& su, const FrameConstants& fc, Bins& bins,
-                      std::vector<uint32_t>& buckets, std::vector<BinEntry>& order) {
+size_t FrontToBackOrder(const SetupOutput& su, const FrameConstants& fc, Bins& bins,
+                        std::vector<uint32_t>& buckets, std::vector<BinEntry>& order) {
   const size_t nS = su.sphereKey.size(), nC = su.cylinderKey.size();
   const size_t nAll = nS + nC + su.ellipsoidKey.size();
   const DepthBucketer bucket{fc.nearPlane, float(kDepthBuckets) / (fc.farPlane - fc.nearPlane)};
@@ -181,6 +217,7 @@ void FrontToBackOrder(const SetupOutput& su, const FrameConstants& fc, Bins& bin
         if (buckets[g] != kCulledKey) f(buckets[g]);
       },
       entry, bins, order);
+  return DropRepeatedSpheres(su, bins, order);
 }
 
 }  // namespace detail
@@ -212,7 +249,8 @@ FrameStats RenderGBuffer(const PrimitiveScene& scene, const Camera& camera,
   const auto t1 = Clock::now();
 
   // ---- front-to-back order and binning: each tile's list stays front to back, then by id ----
-  detail::FrontToBackOrder(ws.setup, fc, ws.depthBins, ws.depthBucket, ws.sorted);
+  stats.spheresRepeated =
+      detail::FrontToBackOrder(ws.setup, fc, ws.depthBins, ws.depthBucket, ws.sorted);
   const int ts = options.tileSize;
   const int tilesX = (camera.width + ts - 1) / ts, tilesY = (camera.height + ts - 1) / ts;
   const size_t nTiles = size_t(tilesX) * size_t(tilesY);

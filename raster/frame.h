@@ -46,6 +46,7 @@ struct FrameStats {
   double setupMs = 0, binningMs = 0, rasterMs = 0;
   uint64_t primitivesSetUp = 0;      // primitives in the scene that reached setup
   uint64_t primitivesCulled = 0;     // outside the frustum, degenerate or non-finite
+  uint64_t spheresRepeated = 0;      // identical to an earlier sphere: hidden by it, not drawn
   uint64_t binEntries = 0;           // (primitive, tile) pairs
   uint64_t fragmentsTested = 0;      // lanes run through the ray/quadric test
   uint64_t fragmentsKept = 0;        // lanes that passed the depth test (incl. overdraw)

@@ -70,9 +70,10 @@ uint64_t SetupPrimitives(const PrimitiveScene& scene, const ViewSetup& view, Set
 // order, so every backend must draw in it: raster/frame.cpp bins from it, the GL mirror
 // (gl/tile_kernel.cpp) draws in it. Fills `order` (one BinEntry per visible primitive);
 // `bins` and `buckets` are scratch. Threads: the current TBB arena; the order is the same for
-// any count.
+// any count. A sphere identical bit for bit to one before it in this order is left out (it can
+// never show: raster/frame.cpp says why); returns how many were.
 inline constexpr uint32_t kDepthBuckets = 4096;
-void FrontToBackOrder(const SetupOutput& setup, const FrameConstants& fc, Bins& bins,
+size_t FrontToBackOrder(const SetupOutput& setup, const FrameConstants& fc, Bins& bins,
                       std::vector<uint32_t>& buckets, std::vector<BinEntry>& order);
 
 }  // namespace softmol::raster::detail

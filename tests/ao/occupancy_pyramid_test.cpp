@@ -169,3 +169,37 @@ TEST(OccupancyPyramid, ReusedWhenNothingMoved) {
 
 }  // namespace
 }  // namespace softmol::ao
+
+namespace softmol::ao {
+namespace {
+
+TEST(OccupancyPyramid, RepeatsOfOneAtomCountOnceAndCostOne) {
+  // N atoms at one point (placeholder coordinates) make the grid one atom wide: each would
+  // splat into every voxel. Exact repeats are skipped (ao/occupancy_pyramid.cpp), so the
+  // pyramid is that of the atom alone, bit for bit.
+  raster::PrimitiveScene one, many;
+  one.spheres.Add({1.0, 2.0, 3.0}, 1.5f, 0);
+  for (int i = 0; i < 5000; ++i) many.spheres.Add({1.0, 2.0, 3.0}, 1.5f, uint32_t(i));
+  OccupancyPyramid a, b;
+  BuildOccupancyPyramid(one, {.resolution = 32}, a);
+  BuildOccupancyPyramid(many, {.resolution = 32}, b);
+  EXPECT_EQ(a.repeatsSkipped, 0u);
+  EXPECT_EQ(b.repeatsSkipped, 4999u);
+  ASSERT_EQ(a.levels.size(), b.levels.size());
+  for (size_t l = 0; l < a.levels.size(); ++l) EXPECT_EQ(a.levels[l].occupancy, b.levels[l].occupancy);
+}
+
+TEST(OccupancyPyramid, RealMoleculesNeverLookForRepeats) {
+  // The search starts only where splatting would cover the grid 64 times with thousands of
+  // voxels per element; il2 in balls and sticks (bonds included) is far below, so even an exact
+  // duplicate atom in it is splatted twice, as it always was.
+  raster::PrimitiveScene scene = Il2Balls();
+  const raster::SphereSet& s = scene.spheres;
+  scene.spheres.Add({s.x[0], s.y[0], s.z[0]}, s.radius[0], s.color[0]);
+  OccupancyPyramid p;
+  BuildOccupancyPyramid(scene, {.resolution = 64}, p);
+  EXPECT_EQ(p.repeatsSkipped, 0u);
+}
+
+}  // namespace
+}  // namespace softmol::ao
