@@ -154,7 +154,8 @@ bool FiniteNonNegative(float v) { return std::isfinite(v) && v >= 0.0f; }
 // is drawn first. N atoms at one position (placeholder coordinates) would otherwise cost N
 // times every pixel they cover. Identical spheres share a depth bucket, so only buckets holding
 // more than kRepeatCheckFrom entries are searched: real scenes stay far below it (a 10 M-atom
-// assembly puts ~2.5 k in each of the 4096), so their frames pay one comparison per bucket.
+// assembly puts ~2.5 k in each of the 4096 on average), so their frames pay one comparison per
+// bucket. The drop leaves `bins` stale: FrontToBackOrder's callers only read `order`.
 constexpr size_t kRepeatCheckFrom = 16384;
 
 size_t DropRepeatedSpheres(const detail::SetupOutput& su, const Bins& bins,
