@@ -2,6 +2,8 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 namespace softmol::effects {
 namespace {
@@ -11,14 +13,35 @@ double DecodeSrgb(double v) {
   return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
 }
 
+uint32_t FloatBits(float f) {
+  uint32_t u;
+  std::memcpy(&u, &f, sizeof u);
+  return u;
+}
+
+// Positive floats below 1 fall into buckets by their top 16 bits (exponent and 7 mantissa
+// bits): about 1/128 of the value wide, so a bucket spans at most two codes' thresholds.
+constexpr uint32_t kBucketShift = 16;
+constexpr size_t kBuckets = (0x3F800000u >> kBucketShift) + 1;  // up to 1.0f
+
 struct Tables {
   std::array<float, 256> decode;
   // threshold[k] = linear value half-way (in encoded space) between codes k and k+1: a linear
   // value >= threshold[k] encodes to at least k+1.
   std::array<float, 255> threshold;
+  // firstCode[b]: the code of the smallest float of bucket b (the number of thresholds <= it);
+  // encoding starts there and steps over the bucket's few thresholds, so it gives exactly the
+  // code a search over all 255 thresholds gives.
+  std::array<uint8_t, kBuckets> firstCode;
   Tables() {
     for (int k = 0; k < 256; ++k) decode[size_t(k)] = float(DecodeSrgb(k / 255.0));
     for (int k = 0; k < 255; ++k) threshold[size_t(k)] = float(DecodeSrgb((k + 0.5) / 255.0));
+    size_t code = 0;
+    for (size_t b = 0; b < kBuckets; ++b) {
+      const uint32_t lowest = uint32_t(b) << kBucketShift;
+      while (code < threshold.size() && FloatBits(threshold[code]) <= lowest) ++code;
+      firstCode[b] = uint8_t(code);
+    }
   }
 };
 
@@ -34,13 +57,14 @@ float SrgbToLinear(uint8_t code) { return GetTables().decode[code]; }
 const float* SrgbDecodeTable() { return GetTables().decode.data(); }
 
 uint8_t LinearToSrgb8(float linear) {
-  const auto& t = GetTables().threshold;
+  const Tables& t = GetTables();
   if (!(linear > 0.0f)) return 0;  // also NaN
-  // Branch-free binary search over the 255 thresholds: the number of thresholds <= linear.
-  int lo = 0;
-  for (int step = 128; step > 0; step >>= 1)
-    if (lo + step <= 255 && t[size_t(lo + step - 1)] <= linear) lo += step;
-  return uint8_t(lo);
+  if (linear >= t.threshold.back()) return 255;
+  // The number of thresholds <= linear: the bucket's first code, then its few thresholds
+  // (positive floats order like their bits).
+  size_t code = t.firstCode[FloatBits(linear) >> kBucketShift];
+  while (t.threshold[code] <= linear) ++code;
+  return uint8_t(code);
 }
 
 LinearRgb UnpackSrgb(uint32_t rgb) {

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "common/check.h"
 #include "common/timer.h"
 #include "effects/color.h"
@@ -12,6 +15,8 @@
 namespace softmol::effects {
 namespace {
 
+// Pixels per task of the sRGB encode: a few 1080p rows, large enough that scheduling is noise.
+constexpr size_t kEncodeGrain = 8192;
 
 }  // namespace
 
@@ -85,16 +90,19 @@ std::vector<uint8_t> EncodeSrgb8(const RenderedFrame& f, bool withAlpha) {
   const size_t n = size_t(f.width) * size_t(f.height);
   const int nc = withAlpha ? 4 : 3;
   std::vector<uint8_t> px(n * size_t(nc));
-  for (size_t i = 0; i < n; ++i) {
-    const float a = f.rgba[4 * i + 3];
-    // PNG stores straight alpha: undo the premultiplication before encoding.
-    const float scale = (withAlpha && a > 0.0f) ? 1.0f / a : 1.0f;
-    for (int c = 0; c < 3; ++c) px[i * size_t(nc) + size_t(c)] = LinearToSrgb8(f.rgba[4 * i + size_t(c)] * scale);
-    if (withAlpha) {
-      const float alpha = a * 255.0f + 0.5f;
-      px[i * size_t(nc) + 3] = uint8_t(alpha >= 255.0f ? 255.0f : (alpha > 0.0f ? alpha : 0.0f));
+  // Each pixel on its own, so rows in parallel give the same bytes for any thread count.
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, kEncodeGrain), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t i = r.begin(); i != r.end(); ++i) {
+      const float a = f.rgba[4 * i + 3];
+      // PNG stores straight alpha: undo the premultiplication before encoding.
+      const float scale = (withAlpha && a > 0.0f) ? 1.0f / a : 1.0f;
+      for (int c = 0; c < 3; ++c) px[i * size_t(nc) + size_t(c)] = LinearToSrgb8(f.rgba[4 * i + size_t(c)] * scale);
+      if (withAlpha) {
+        const float alpha = a * 255.0f + 0.5f;
+        px[i * size_t(nc) + 3] = uint8_t(alpha >= 255.0f ? 255.0f : (alpha > 0.0f ? alpha : 0.0f));
+      }
     }
-  }
+  });
   return px;
 }
 

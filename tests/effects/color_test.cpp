@@ -1,7 +1,11 @@
 // tests/effects/color_test.cpp — sRGB decode/encode: every 8-bit code survives the round trip,
 // encoding is monotonic and picks the nearest code in encoded space, and NaN/negatives clamp.
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -33,6 +37,33 @@ TEST(Color, EncodeIsNearestCodeAndMonotonic) {
     const double enc = linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(double(linear), 1.0 / 2.4) - 0.055;
     EXPECT_LE(std::abs(enc * 255.0 - code), 0.5 + 1e-4) << linear;
   }
+}
+
+// The encoder's bucket table is a shortcut: it must give exactly the code a search over all 255
+// thresholds gives (the thresholds recomputed here from the standard formula in double). Every
+// float in [0, 1.01] with a stride of 61 bits, plus each threshold and its neighbours.
+TEST(Color, EncodeEqualsTheFullThresholdSearch) {
+  std::vector<float> threshold(255);
+  for (int k = 0; k < 255; ++k) {
+    const double v = (k + 0.5) / 255.0;
+    threshold[size_t(k)] = float(v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4));
+  }
+  auto reference = [&](float x) {
+    return int(std::upper_bound(threshold.begin(), threshold.end(), x) - threshold.begin());
+  };
+  auto fromBits = [](uint32_t u) {
+    float f;
+    std::memcpy(&f, &u, sizeof f);
+    return f;
+  };
+  const uint32_t last = 0x3F8147AEu;  // 1.01f
+  size_t wrong = 0;
+  for (uint32_t u = 1; u <= last; u += 61) wrong += LinearToSrgb8(fromBits(u)) != reference(fromBits(u));
+  for (float t : threshold)
+    for (float x : {std::nextafter(t, 0.0f), t, std::nextafter(t, 2.0f)}) {
+      EXPECT_EQ(LinearToSrgb8(x), reference(x)) << x;
+    }
+  EXPECT_EQ(wrong, 0u);
 }
 
 TEST(Color, OutOfRangeAndNaNClamp) {
