@@ -92,9 +92,8 @@ BufferComparison ComparePrimitiveIds(const raster::GBuffer& cpu, const raster::G
   return c;
 }
 
-BufferComparison CompareFloatChannel(
-    const std::string& name, const raster::GBuffer& cpu, const raster::GBuffer& gl,
-    std::span<const std::pair<const std::vector<float>*, const std::vector<float>*>> planes) {
+BufferComparison CompareFloatChannel(const std::string& name, const raster::GBuffer& cpu, const raster::GBuffer& gl,
+                                     std::span<const PlanePair> planes) {
   CheckSameShape(cpu, gl);
   BufferComparison c;
   c.name = name;
@@ -219,11 +218,10 @@ BackendReport CompareBackends(FrameRenderer& renderer, const raster::PrimitiveSc
   r.sampleWidth = cpu.width;
   r.sampleHeight = cpu.height;
   r.buffers.push_back(ComparePrimitiveIds(cpu, glSamples));
-  using Planes = std::pair<const std::vector<float>*, const std::vector<float>*>;
-  const Planes depth[] = {{&cpu.depth, &glSamples.depth}};
+  const PlanePair depth[] = {{&cpu.depth, &glSamples.depth}};
   r.buffers.push_back(CompareFloatChannel("depth", cpu, glSamples, depth));
   if (cpu.channels & raster::kNormal) {
-    const Planes normal[] = {{&cpu.normalX, &glSamples.normalX},
+    const PlanePair normal[] = {{&cpu.normalX, &glSamples.normalX},
                              {&cpu.normalY, &glSamples.normalY},
                              {&cpu.normalZ, &glSamples.normalZ}};
     r.buffers.push_back(CompareFloatChannel("normal", cpu, glSamples, normal));

@@ -44,11 +44,12 @@ std::string HistogramLabel(int bin);
 
 // Primitive ids over the pixels covered by either backend.
 BufferComparison ComparePrimitiveIds(const raster::GBuffer& cpu, const raster::GBuffer& gl);
+// A CPU plane and the GL plane it is compared with.
+using PlanePair = std::pair<const raster::Plane<float>*, const raster::Plane<float>*>;
 // A float G-buffer channel (depth, or the three normal planes together, ...) over the pixels
-// where both backends see the same primitive. `planes` pairs CPU and GL planes.
-BufferComparison CompareFloatChannel(
-    const std::string& name, const raster::GBuffer& cpu, const raster::GBuffer& gl,
-    std::span<const std::pair<const std::vector<float>*, const std::vector<float>*>> planes);
+// where both backends see the same primitive.
+BufferComparison CompareFloatChannel(const std::string& name, const raster::GBuffer& cpu, const raster::GBuffer& gl,
+                                     std::span<const PlanePair> planes);
 // Base colour (uint) over the pixels where both see the same primitive.
 BufferComparison CompareBaseColor(const raster::GBuffer& cpu, const raster::GBuffer& gl);
 // One float per sample (a pass's output plane, row 0 at the bottom), every sample, in ULPs.

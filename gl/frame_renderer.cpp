@@ -282,15 +282,14 @@ GlFrameStats FrameRenderer::RenderFrame(const raster::PrimitiveScene& scene,
   return s;
 }
 
-const std::vector<float>& FrameRenderer::Plane(effects::FrameBuffer buffer) const {
-  static const std::vector<float> none;
+std::span<const float> FrameRenderer::Plane(effects::FrameBuffer buffer) const {
   switch (buffer) {
     case effects::kBufOutline: return impl_->outline;
     case effects::kBufShadow: return impl_->shadow;
     case effects::kBufAo: return impl_->ao;
     case effects::kBufDepthHalo: return impl_->depthHalo;
     case effects::kBufShadowMap: return impl_->shadows.light.map.depth;
-    default: return none;
+    default: return {};
   }
 }
 

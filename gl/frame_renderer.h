@@ -13,6 +13,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 
 #include "effects/frame_renderer.h"
 #include "effects/pass_list.h"
@@ -57,7 +58,7 @@ class FrameRenderer {
 
   // One float plane the last frame's plan wrote, row 0 at the bottom: kBufOutline, kBufShadow,
   // kBufAo (one per G-buffer sample), kBufShadowMap (the light's depth); empty for any other.
-  const std::vector<float>& Plane(effects::FrameBuffer buffer) const;
+  std::span<const float> Plane(effects::FrameBuffer buffer) const;
   // The last frame's object-space halo opacity per G-buffer sample (before it is composited;
   // the "halos" pass writes no buffer of the pass list but the colour), row 0 at the bottom;
   // empty when that pass did not run or had nothing to march.

@@ -190,7 +190,7 @@ void ReadBack(const GBufferTargets& g, uint32_t channels, raster::GBuffer& out) 
   out.Resize(g.width, g.height, channels);
   const size_t n = size_t(g.width) * size_t(g.height);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  auto readFloat4 = [&](GLuint tex, std::vector<float>& x, std::vector<float>& y, std::vector<float>& z) {
+  auto readFloat4 = [&](GLuint tex, raster::Plane<float>& x, raster::Plane<float>& y, raster::Plane<float>& z) {
     std::vector<float> rgba(4 * n);
     glGetTextureImage(tex, 0, GL_RGBA, GL_FLOAT, GLsizei(rgba.size() * sizeof(float)), rgba.data());
     for (size_t i = 0; i < n; ++i) x[i] = rgba[4 * i], y[i] = rgba[4 * i + 1], z[i] = rgba[4 * i + 2];

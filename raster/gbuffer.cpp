@@ -4,11 +4,11 @@
 namespace softmol::raster {
 namespace {
 template <class T>
-void Plane(std::vector<T>& v, bool want, size_t n) {
+void SizePlane(Plane<T>& v, bool want, size_t n) {
   if (want) {
     v.resize(n);
   } else {
-    std::vector<T>().swap(v);
+    Plane<T>().swap(v);
   }
 }
 }  // namespace
@@ -18,17 +18,17 @@ void GBuffer::Resize(int w, int h, uint32_t ch) {
   height = h;
   channels = ch | kDepth;
   const size_t n = size_t(w) * size_t(h);
-  Plane(depth, true, n);
-  Plane(normalX, channels & kNormal, n);
-  Plane(normalY, channels & kNormal, n);
-  Plane(normalZ, channels & kNormal, n);
-  Plane(baseColor, channels & kBaseColor, n);
-  Plane(primitiveId, channels & kPrimitiveId, n);
-  Plane(surfaceU, channels & kSurfaceCoord, n);
-  Plane(surfaceV, channels & kSurfaceCoord, n);
-  Plane(surfaceW, channels & kSurfaceCoord, n);
-  Plane(line, channels & kLine, n);
-  Plane(capped, channels & kCapped, n);
+  SizePlane(depth, true, n);
+  SizePlane(normalX, channels & kNormal, n);
+  SizePlane(normalY, channels & kNormal, n);
+  SizePlane(normalZ, channels & kNormal, n);
+  SizePlane(baseColor, channels & kBaseColor, n);
+  SizePlane(primitiveId, channels & kPrimitiveId, n);
+  SizePlane(surfaceU, channels & kSurfaceCoord, n);
+  SizePlane(surfaceV, channels & kSurfaceCoord, n);
+  SizePlane(surfaceW, channels & kSurfaceCoord, n);
+  SizePlane(line, channels & kLine, n);
+  SizePlane(capped, channels & kCapped, n);
 }
 
 }  // namespace softmol::raster

@@ -7,7 +7,16 @@
 #include <cstdint>
 #include <vector>
 
+#include <tbb/cache_aligned_allocator.h>
+
 namespace softmol::raster {
+
+// A full-frame plane, its rows on cache-line boundaries' grid (the start is cache-line
+// aligned and the kernels' tiles are multiples of 16 bytes wide): the copy-out streams whole
+// lines to it, and a stream store to a misaligned plane costs a read of each split line —
+// measured 25× slower than to an aligned one on the 2-core machine (docs/PERFORMANCE.md).
+template <class T>
+using Plane = std::vector<T, tbb::cache_aligned_allocator<T>>;
 
 enum GBufferChannel : uint32_t {
   kDepth = 1,        // eye-space distance along the view axis, Å; +inf on background
@@ -29,13 +38,13 @@ inline constexpr uint32_t kNoPrimitive = 0xFFFFFFFFu;
 struct GBuffer {
   int width = 0, height = 0;
   uint32_t channels = 0;
-  std::vector<float> depth;
-  std::vector<float> normalX, normalY, normalZ;
-  std::vector<uint32_t> baseColor;
-  std::vector<uint32_t> primitiveId;
-  std::vector<float> surfaceU, surfaceV, surfaceW;
-  std::vector<float> line;
-  std::vector<float> capped;
+  Plane<float> depth;
+  Plane<float> normalX, normalY, normalZ;
+  Plane<uint32_t> baseColor;
+  Plane<uint32_t> primitiveId;
+  Plane<float> surfaceU, surfaceV, surfaceW;
+  Plane<float> line;
+  Plane<float> capped;
 
   // Sizes the planes of `channels` (| kDepth) and frees the others; keeps capacity when
   // called again with the same size, so a frame loop does not allocate.

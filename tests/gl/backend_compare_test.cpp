@@ -40,7 +40,6 @@ constexpr double kIdAgreement = 0.999;
 constexpr uint64_t kDepthMaxUlp = 4;
 constexpr double kColorAgreement = 0.999;
 
-using Planes = std::pair<const std::vector<float>*, const std::vector<float>*>;
 
 // Fraction of compared values whose difference is <= `within`.
 double FractionWithin(const BufferComparison& c, uint64_t within) {
@@ -85,11 +84,11 @@ std::vector<BufferComparison> CompareGBuffers(const raster::PrimitiveScene& cpuS
   test::State().renderer->RenderGBuffer(glScene, camera, all, gl);
   std::vector<BufferComparison> out;
   out.push_back(ComparePrimitiveIds(cpu, gl));
-  const Planes depth[] = {{&cpu.depth, &gl.depth}};
+  const PlanePair depth[] = {{&cpu.depth, &gl.depth}};
   out.push_back(CompareFloatChannel("depth", cpu, gl, depth));
-  const Planes normal[] = {{&cpu.normalX, &gl.normalX}, {&cpu.normalY, &gl.normalY}, {&cpu.normalZ, &gl.normalZ}};
+  const PlanePair normal[] = {{&cpu.normalX, &gl.normalX}, {&cpu.normalY, &gl.normalY}, {&cpu.normalZ, &gl.normalZ}};
   out.push_back(CompareFloatChannel("normal", cpu, gl, normal));
-  const Planes surface[] = {{&cpu.surfaceU, &gl.surfaceU}, {&cpu.surfaceV, &gl.surfaceV}, {&cpu.surfaceW, &gl.surfaceW}};
+  const PlanePair surface[] = {{&cpu.surfaceU, &gl.surfaceU}, {&cpu.surfaceV, &gl.surfaceV}, {&cpu.surfaceW, &gl.surfaceW}};
   out.push_back(CompareFloatChannel("surface coord", cpu, gl, surface));
   out.push_back(CompareBaseColor(cpu, gl));
   return out;
@@ -118,16 +117,16 @@ std::vector<BufferComparison> CompareEdgeGBuffers(const raster::PrimitiveScene& 
   pass.Release();
   std::vector<BufferComparison> out;
   out.push_back(ComparePrimitiveIds(cpu, gl));
-  const Planes depth[] = {{&cpu.depth, &gl.depth}};
+  const PlanePair depth[] = {{&cpu.depth, &gl.depth}};
   out.push_back(CompareFloatChannel("depth", cpu, gl, depth));
-  const Planes normal[] = {{&cpu.normalX, &gl.normalX}, {&cpu.normalY, &gl.normalY}, {&cpu.normalZ, &gl.normalZ}};
+  const PlanePair normal[] = {{&cpu.normalX, &gl.normalX}, {&cpu.normalY, &gl.normalY}, {&cpu.normalZ, &gl.normalZ}};
   out.push_back(CompareFloatChannel("normal", cpu, gl, normal));
-  const Planes surface[] = {{&cpu.surfaceU, &gl.surfaceU}, {&cpu.surfaceV, &gl.surfaceV}, {&cpu.surfaceW, &gl.surfaceW}};
+  const PlanePair surface[] = {{&cpu.surfaceU, &gl.surfaceU}, {&cpu.surfaceV, &gl.surfaceV}, {&cpu.surfaceW, &gl.surfaceW}};
   out.push_back(CompareFloatChannel("surface coord", cpu, gl, surface));
   out.push_back(CompareBaseColor(cpu, gl));
-  const Planes line[] = {{&cpu.line, &gl.line}};
+  const PlanePair line[] = {{&cpu.line, &gl.line}};
   out.push_back(CompareFloatChannel("line", cpu, gl, line));
-  const Planes capped[] = {{&cpu.capped, &gl.capped}};
+  const PlanePair capped[] = {{&cpu.capped, &gl.capped}};
   out.push_back(CompareFloatChannel("capped", cpu, gl, capped));
   size_t lines = 0, caps = 0;
   for (size_t i = 0; i < cpu.line.size(); ++i) {
