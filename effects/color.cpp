@@ -20,7 +20,8 @@ uint32_t FloatBits(float f) {
 }
 
 // Positive floats below 1 fall into buckets by their top 16 bits (exponent and 7 mantissa
-// bits): about 1/128 of the value wide, so a bucket spans at most two codes' thresholds.
+// bits): about 1/128 of the value wide, narrower than the gap between any two thresholds, so
+// a bucket holds at most one threshold (the encode test would fail if one held two).
 constexpr uint32_t kBucketShift = 16;
 constexpr size_t kBuckets = (0x3F800000u >> kBucketShift) + 1;  // up to 1.0f
 
@@ -30,8 +31,8 @@ struct Tables {
   // value >= threshold[k] encodes to at least k+1.
   std::array<float, 255> threshold;
   // firstCode[b]: the code of the smallest float of bucket b (the number of thresholds <= it);
-  // encoding starts there and steps over the bucket's few thresholds, so it gives exactly the
-  // code a search over all 255 thresholds gives.
+  // encoding starts there and steps over the bucket's one threshold if it is passed, so it
+  // gives exactly the code a search over all 255 thresholds gives.
   std::array<uint8_t, kBuckets> firstCode;
   Tables() {
     for (int k = 0; k < 256; ++k) decode[size_t(k)] = float(DecodeSrgb(k / 255.0));
@@ -50,21 +51,39 @@ const Tables& GetTables() {
   return tables;
 }
 
+// The number of thresholds <= linear: the bucket's first code, plus one past the bucket's
+// threshold (positive floats order like their bits; code stays below 255 because linear is
+// below the last threshold).
+inline uint8_t Encode(const Tables& t, float linear) {
+  if (!(linear > 0.0f)) return 0;  // also NaN
+  if (linear >= t.threshold.back()) return 255;
+  const size_t code = t.firstCode[FloatBits(linear) >> kBucketShift];
+  return uint8_t(code + (t.threshold[code] <= linear ? 1 : 0));
+}
+
 }  // namespace
 
 float SrgbToLinear(uint8_t code) { return GetTables().decode[code]; }
 
 const float* SrgbDecodeTable() { return GetTables().decode.data(); }
 
-uint8_t LinearToSrgb8(float linear) {
+uint8_t LinearToSrgb8(float linear) { return Encode(GetTables(), linear); }
+
+void EncodeSrgb8Pixels(const float* rgba, size_t n, bool withAlpha, uint8_t* out) {
   const Tables& t = GetTables();
-  if (!(linear > 0.0f)) return 0;  // also NaN
-  if (linear >= t.threshold.back()) return 255;
-  // The number of thresholds <= linear: the bucket's first code, then its few thresholds
-  // (positive floats order like their bits).
-  size_t code = t.firstCode[FloatBits(linear) >> kBucketShift];
-  while (t.threshold[code] <= linear) ++code;
-  return uint8_t(code);
+  if (!withAlpha) {
+    for (size_t i = 0; i < n; ++i, rgba += 4, out += 3)
+      out[0] = Encode(t, rgba[0]), out[1] = Encode(t, rgba[1]), out[2] = Encode(t, rgba[2]);
+    return;
+  }
+  for (size_t i = 0; i < n; ++i, rgba += 4, out += 4) {
+    const float a = rgba[3];
+    // PNG stores straight alpha: undo the premultiplication before encoding.
+    const float scale = a > 0.0f ? 1.0f / a : 1.0f;
+    for (int c = 0; c < 3; ++c) out[c] = Encode(t, rgba[c] * scale);
+    const float alpha = a * 255.0f + 0.5f;
+    out[3] = uint8_t(alpha >= 255.0f ? 255.0f : (alpha > 0.0f ? alpha : 0.0f));
+  }
 }
 
 LinearRgb UnpackSrgb(uint32_t rgb) {

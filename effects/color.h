@@ -4,6 +4,7 @@
 // is a search in a table of the 255 decision thresholds between neighbouring 8-bit codes.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
 #include <glm/vec3.hpp>
@@ -15,6 +16,11 @@ float SrgbToLinear(uint8_t code);
 
 // The 8-bit sRGB code nearest to a linear value (clamped to [0,1]; NaN maps to 0).
 uint8_t LinearToSrgb8(float linear);
+
+// n pixels of premultiplied linear RGBA (4 floats each) to 8-bit sRGB: RGB (3 bytes a pixel),
+// or with straight alpha RGBA (4 bytes; alpha rounded, colour un-premultiplied first). Each
+// colour channel is exactly LinearToSrgb8.
+void EncodeSrgb8Pixels(const float* rgba, size_t n, bool withAlpha, uint8_t* out);
 
 // The 256-entry decode table itself (SrgbToLinear(k) == SrgbDecodeTable()[k]), for loops
 // that want to look it up without a call per channel.

@@ -90,18 +90,9 @@ std::vector<uint8_t> EncodeSrgb8(const RenderedFrame& f, bool withAlpha) {
   const size_t n = size_t(f.width) * size_t(f.height);
   const int nc = withAlpha ? 4 : 3;
   std::vector<uint8_t> px(n * size_t(nc));
-  // Each pixel on its own, so rows in parallel give the same bytes for any thread count.
+  // Each pixel on its own, so pixels in parallel give the same bytes for any thread count.
   tbb::parallel_for(tbb::blocked_range<size_t>(0, n, kEncodeGrain), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t i = r.begin(); i != r.end(); ++i) {
-      const float a = f.rgba[4 * i + 3];
-      // PNG stores straight alpha: undo the premultiplication before encoding.
-      const float scale = (withAlpha && a > 0.0f) ? 1.0f / a : 1.0f;
-      for (int c = 0; c < 3; ++c) px[i * size_t(nc) + size_t(c)] = LinearToSrgb8(f.rgba[4 * i + size_t(c)] * scale);
-      if (withAlpha) {
-        const float alpha = a * 255.0f + 0.5f;
-        px[i * size_t(nc) + 3] = uint8_t(alpha >= 255.0f ? 255.0f : (alpha > 0.0f ? alpha : 0.0f));
-      }
-    }
+    EncodeSrgb8Pixels(f.rgba.data() + 4 * r.begin(), r.size(), withAlpha, px.data() + size_t(nc) * r.begin());
   });
   return px;
 }

@@ -66,6 +66,30 @@ TEST(Color, EncodeEqualsTheFullThresholdSearch) {
   EXPECT_EQ(wrong, 0u);
 }
 
+// The bulk encoder (what PNG output runs) gives each channel exactly LinearToSrgb8, with
+// straight alpha for RGBA; values out of range, NaN and alpha 0 included.
+TEST(Color, PixelEncoderEqualsTheOneValueEncoder) {
+  std::vector<float> rgba;
+  for (int i = 0; i < 5000; ++i) {
+    const float a = i % 7 == 0 ? 0.0f : float((i * 37) % 101) / 100.0f;
+    for (int c = 0; c < 3; ++c) rgba.push_back(a * float((i * (c + 3) * 53) % 1009) / 1000.0f);
+    rgba.push_back(a);
+  }
+  rgba[0] = std::numeric_limits<float>::quiet_NaN(), rgba[5] = -1.0f, rgba[10] = 7.0f;
+  const size_t n = rgba.size() / 4;
+  std::vector<uint8_t> rgb(3 * n), straight(4 * n);
+  EncodeSrgb8Pixels(rgba.data(), n, false, rgb.data());
+  EncodeSrgb8Pixels(rgba.data(), n, true, straight.data());
+  for (size_t i = 0; i < n; ++i) {
+    const float a = rgba[4 * i + 3];
+    for (size_t c = 0; c < 3; ++c) {
+      ASSERT_EQ(rgb[3 * i + c], LinearToSrgb8(rgba[4 * i + c])) << i;
+      ASSERT_EQ(straight[4 * i + c], LinearToSrgb8(rgba[4 * i + c] * (a > 0.0f ? 1.0f / a : 1.0f))) << i;
+    }
+    ASSERT_EQ(straight[4 * i + 3], uint8_t(std::lround(a * 255.0f))) << i;
+  }
+}
+
 TEST(Color, OutOfRangeAndNaNClamp) {
   EXPECT_EQ(LinearToSrgb8(-1.0f), 0);
   EXPECT_EQ(LinearToSrgb8(std::numeric_limits<float>::quiet_NaN()), 0);
