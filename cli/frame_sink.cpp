@@ -6,7 +6,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <stdexcept>
+#include <utility>
 
 #include "io/image_io.h"
 #if SOFTMOL_HAVE_GL
@@ -64,7 +66,8 @@ OutputKind OutputKindOf(const std::string& path, const io::SourceLocation& where
   throw io::InputError(where, "output must end in .png or .exr, got '" + path + "'");
 }
 
-FrameSink::FrameSink(const std::string& backend, [[maybe_unused]] int threads, bool trace) : tracing_(trace) {
+FrameSink::FrameSink(const std::string& backend, int threads, bool trace)
+    : tracing_(trace), writeBehindAllowed_(threads != 1) {
   if (backend != "gl") return;
 #if !SOFTMOL_HAVE_GL
   throw io::InputError({"--backend"}, "this softmol was built without the OpenGL mirror (configure with -DSOFTMOL_BUILD_GL=ON)");
@@ -84,7 +87,10 @@ FrameSink::FrameSink(const std::string& backend, [[maybe_unused]] int threads, b
 #endif
 }
 
-FrameSink::~FrameSink() = default;
+FrameSink::~FrameSink() {
+  // Unwinding (a later frame failed): the earlier frame's file is still finished, or removed.
+  if (writer_.joinable()) writer_.join();
+}
 
 void FrameSink::Render(const raster::PrimitiveScene& scene, const raster::Camera& camera,
                        const effects::RenderOptions& options, effects::FrameResources& resources) {
@@ -109,18 +115,50 @@ void FrameSink::Render(const raster::PrimitiveScene& scene, const raster::Camera
   sumMs_ += frame_.totalMs;
 }
 
-void FrameSink::Write(const std::string& path, OutputKind kind, const effects::RenderOptions& options) {
+void FrameSink::Write(const std::string& path, OutputKind kind, const effects::RenderOptions& options, bool behind) {
+  FinishWrites();
   const Clock::time_point w0 = Clock::now();
+  // What the file needs, taken from frame() now: the next Render overwrites it.
+  std::function<void()> write;
   if (kind == OutputKind::kPng) {
-    io::WritePng(path, frame_.width, frame_.height, options.transparent ? 4 : 3,
-                 effects::EncodeSrgb8(frame_, options.transparent));
-    if (options.aovs != 0) io::WriteExr(SiblingAovPath(path), ToExr(frame_, /*withColor=*/false));
+    const int channels = options.transparent ? 4 : 3;
+    std::vector<uint8_t> pixels = effects::EncodeSrgb8(frame_, options.transparent);
+    io::ImageFile aovs;
+    if (options.aovs != 0) aovs = ToExr(frame_, /*withColor=*/false);
+    write = [path, w = frame_.width, h = frame_.height, channels, pixels = std::move(pixels), aovs = std::move(aovs)] {
+      io::WritePng(path, w, h, channels, pixels);
+      if (!aovs.channels.empty()) io::WriteExr(SiblingAovPath(path), aovs);
+    };
   } else {
-    io::WriteExr(path, ToExr(frame_, /*withColor=*/true));
+    write = [path, image = ToExr(frame_, /*withColor=*/true)] { io::WriteExr(path, image); };
   }
-  const double ms = MsSince(w0);
-  if (tracing_) trace_.AddComplete("write", "output", cursorMs_, ms);
-  cursorMs_ += ms;
+  if (!behind || !writeBehindAllowed_) {
+    write();
+    const double ms = MsSince(w0);
+    if (tracing_) trace_.AddComplete("write", "output", cursorMs_, ms);
+    cursorMs_ += ms;
+    return;
+  }
+  const double takeMs = MsSince(w0);  // the pixels, on this thread
+  if (tracing_) trace_.AddComplete("take pixels", "output", cursorMs_, takeMs);
+  cursorMs_ += takeMs;
+  writeStartMs_ = cursorMs_;
+  writer_ = std::thread([this, write = std::move(write)] {
+    const Clock::time_point t0 = Clock::now();
+    try {
+      write();
+    } catch (...) {
+      writeError_ = std::current_exception();
+    }
+    writeMs_ = MsSince(t0);
+  });
+}
+
+void FrameSink::FinishWrites() {
+  if (!writer_.joinable()) return;
+  writer_.join();
+  if (tracing_) trace_.AddComplete("write", "output", writeStartMs_, writeMs_, ProfileTrace::kWriterTrack);
+  if (writeError_) std::rethrow_exception(std::exchange(writeError_, nullptr));
 }
 
 void FrameSink::AddSteps(const std::vector<StepTime>& steps) {

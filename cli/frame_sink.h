@@ -3,8 +3,10 @@
 // PNG/EXR writers (with the AOVs), the profile trace and the frame timings.
 #pragma once
 
+#include <exception>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "cli/load_molecule.h"
@@ -33,8 +35,14 @@ class FrameSink {
   // from frame to frame on the CPU backend.
   void Render(const raster::PrimitiveScene& scene, const raster::Camera& camera, const effects::RenderOptions& options,
               effects::FrameResources& resources);
-  // Writes frame() to `path` (a PNG also gets NAME.aov.exr when AOVs were asked for).
-  void Write(const std::string& path, OutputKind kind, const effects::RenderOptions& options);
+  // Writes frame() to `path` (a PNG also gets NAME.aov.exr when AOVs were asked for). With
+  // `behind`, the pixels are taken now and the file is written on a thread of its own while the
+  // caller renders the next frame (with more than one thread allowed): one write at a time, and
+  // its error is thrown by the next Write or by FinishWrites. Otherwise the file is there when
+  // Write returns.
+  void Write(const std::string& path, OutputKind kind, const effects::RenderOptions& options, bool behind = false);
+  // Waits for the write in flight; throws its error.
+  void FinishWrites();
 
   // Loading steps in the trace, laid end to end from now.
   void AddSteps(const std::vector<StepTime>& steps);
@@ -53,6 +61,10 @@ class FrameSink {
   effects::RenderedFrame frame_;
   int rendered_ = 0;
   double bestMs_ = 1e300, sumMs_ = 0;
+  bool writeBehindAllowed_ = true;  // false with --threads 1: a second thread would break the cap
+  std::thread writer_;              // the write in flight, if any
+  std::exception_ptr writeError_;   // its failure
+  double writeStartMs_ = 0, writeMs_ = 0;
   struct GlMirror;  // the EGL context and the GL frame renderer (cli/frame_sink.cpp)
   std::unique_ptr<GlMirror> gl_;  // null: the CPU passes
 };

@@ -9,8 +9,8 @@
 namespace softmol::cli {
 
 void ProfileTrace::AddComplete(const std::string& name, const std::string& category, double startMs,
-                               double durationMs) {
-  events_.push_back({{"name", name}, {"cat", category}, {"ph", "X"}, {"pid", 1}, {"tid", 1},
+                               double durationMs, int track) {
+  events_.push_back({{"name", name}, {"cat", category}, {"ph", "X"}, {"pid", 1}, {"tid", track},
                      {"ts", startMs * 1000.0}, {"dur", durationMs * 1000.0}});
 }
 

@@ -13,8 +13,11 @@ namespace softmol::cli {
 
 class ProfileTrace {
  public:
-  // A complete ("X") event; times in ms from the start of the command.
-  void AddComplete(const std::string& name, const std::string& category, double startMs, double durationMs);
+  // A complete ("X") event; times in ms from the start of the command. Track 1 is the main
+  // thread; kWriterTrack holds the image writes that overlap the next frame.
+  void AddComplete(const std::string& name, const std::string& category, double startMs, double durationMs,
+                   int track = 1);
+  static constexpr int kWriterTrack = 2;
   // A frame, its passes and counters, starting at startMs.
   void AddFrame(int index, double startMs, const effects::RenderedFrame& frame);
   // Writes the JSON through a temporary file and a rename.

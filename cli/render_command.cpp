@@ -500,10 +500,13 @@ void RenderInput(const RenderArgs& a, const RunPlan& plan, const std::string& in
     if (!plan.shard.Takes(firstJob + k)) continue;
     if (trajectory) RenderTrajectoryFrame(a, plan, s, *trajectory, frames, k, resources, sink);
     else RenderStillFrame(a, plan, s, k, resources, sink);
-    sink.Write(FrameOutputName(pattern, a.numberByFrame ? frames[k] : k), plan.kind, s.options);
+    // A sequence's frame is written while the next one renders.
+    sink.Write(FrameOutputName(pattern, a.numberByFrame ? frames[k] : k), plan.kind, s.options,
+               /*behind=*/frames.size() > 1);
     ++taken;
     if (progress) std::fprintf(stderr, "\rframe %zu (%zu of %zu)   ", frames[k], k + 1, frames.size());
   }
+  sink.FinishWrites();
   if (progress) std::fprintf(stderr, "\n");
   if (!a.quiet) PrintSummary(a, plan, input, s, pattern, frames.size(), taken, MsSince(start));
 }
@@ -546,6 +549,7 @@ int RunRender(const RenderArgs& a) {
       ++failed;
     }
   }
+  sink.FinishWrites();  // an input that failed may have left its last good frame in flight
   if (!a.profile.empty()) sink.WriteTrace(a.profile);
   if (!a.quiet) sink.PrintLastFrame();
   if (failed == 0) return io::kExitOk;

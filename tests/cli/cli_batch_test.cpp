@@ -101,14 +101,40 @@ TEST(CliBatch, TurntableFramesAreTheRotateRendersAndBakeOnce) {
   EXPECT_NE(frames.at("tt_00000.png"), frames.at("tt_00002.png")) << "the molecule turns";
   // The camera turns, not the atoms: one bake, reused by the three frames after it.
   const nlohmann::json trace = nlohmann::json::parse(Slurp(dir / "trace.json"));
-  int baked = 0, reused = 0;
+  int baked = 0, reused = 0, writtenBehind = 0;
   for (const auto& e : trace.is_array() ? trace : trace["traceEvents"]) {
     const std::string name = e.value("name", "");
     baked += name == "ao bake";
     reused += name == "ao bake (reused)";
+    writtenBehind += name == "write" && e.value("tid", 0) == 2;
   }
   EXPECT_EQ(baked, 1);
   EXPECT_EQ(reused, 3);
+  // Each frame's file was written on the writer's track while the next frame rendered.
+  EXPECT_EQ(writtenBehind, 4);
+}
+
+// With one thread the frames are written in line (a writer thread would break the cap), to the
+// same bytes.
+TEST(CliBatch, OneThreadWritesTheSameFramesInLine) {
+  const auto dir = ScratchDir("batch_one_thread");
+  const std::string common = "render " + Q(Data("pept.pdb")) + kSmall + "--ao none -q --turntable 3 ";
+  ASSERT_EQ(RunSoftmol(common + "-o " + Q(dir / "two_%d.png"), dir).exitCode, 0);
+  const CommandResult r =
+      RunSoftmol(common + "--threads 1 --profile " + Q(dir / "trace.json") + " -o " + Q(dir / "one_%d.png"), dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  for (int k = 0; k < 3; ++k) {
+    const std::string n = std::to_string(k) + ".png";
+    EXPECT_EQ(Slurp(dir / ("one_" + n)), Slurp(dir / ("two_" + n))) << k;
+  }
+  int inLine = 0, behind = 0;
+  const nlohmann::json trace = nlohmann::json::parse(Slurp(dir / "trace.json"));
+  for (const auto& e : trace["traceEvents"]) {
+    if (e.value("name", "") != "write") continue;
+    (e.value("tid", 0) == 1 ? inLine : behind) += 1;
+  }
+  EXPECT_EQ(inLine, 3);
+  EXPECT_EQ(behind, 0);
 }
 
 TEST(CliBatch, TurntableAboutTheHorizontalAxisIsRotateX) {

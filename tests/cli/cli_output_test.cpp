@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstdlib>
@@ -51,6 +52,22 @@ TEST(CliOutput, MissingFolderIsNamed) {
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.err.find("the output folder '" + folder + "' does not exist"), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("Success"), std::string::npos) << r.err;
+}
+
+// A sequence writes frame N while N+1 renders: a frame that cannot be written still stops the
+// run with its own name in the message, the frames before it stay whole, none after it is
+// written, and no temporary is left.
+TEST(CliOutput, SequenceFrameThatCannotBeWrittenStopsTheRun) {
+  const auto dir = ScratchDir("out_sequence");
+  fs::create_directory(dir / "tt_00001.png");
+  const CommandResult r =
+      RunSoftmol("render --ao none " + kPept + " --size 64x48 --turntable 4 -o '" + (dir / "tt_%05d.png").string() + "'", dir);
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("tt_00001.png: the output is a directory"), std::string::npos) << r.err;
+  std::vector<std::string> left = Outputs(dir);
+  std::sort(left.begin(), left.end());
+  EXPECT_EQ(left, (std::vector<std::string>{"tt_00000.png", "tt_00001.png"}));
+  EXPECT_EQ(io::ReadImage8((dir / "tt_00000.png").string()).width, 64);
 }
 
 // A tmpfs of 16 KiB mounted on `dir` for the test's lifetime (needs CAP_SYS_ADMIN).
