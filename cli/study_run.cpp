@@ -72,7 +72,7 @@ std::vector<uint8_t> CoveredMask(const raster::GBuffer& g) {
 
 Output Keep(Method m, const effects::RenderedFrame& f, const effects::FrameResources& res) {
   if (m == Method::kShadows) return {res.shadow, CoveredMask(res.gbuffer)};
-  if (m == Method::kAntialiasing) return {f.rgba, {}};
+  if (m == Method::kAntialiasing) return {std::vector<float>(f.rgba.begin(), f.rgba.end()), {}};
   return {f.ao, VisibleMask(f.id)};
 }
 

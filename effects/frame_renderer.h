@@ -86,7 +86,7 @@ struct PassTiming {
 // Output-resolution results, top row first (file order).
 struct RenderedFrame {
   int width = 0, height = 0;
-  std::vector<float> rgba;                       // linear, premultiplied alpha, 4 floats a pixel
+  Plane<float> rgba;                             // linear, premultiplied alpha, 4 floats a pixel
   std::vector<float> depth;                      // kAovDepth: eye-space Å along the view axis, +inf background
   std::vector<float> normalX, normalY, normalZ;  // kAovNormal: eye space, 0 on background
   std::vector<uint32_t> id;                      // kAovId: primitive id, 0xFFFFFFFF background

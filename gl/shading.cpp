@@ -127,7 +127,7 @@ void ShadingPass::Run(const GBufferTargets& g, int ssaa, const effects::ShadingO
   DrawFullscreen(p, fbo, w, h);
 }
 
-void ShadingPass::ReadBack(std::vector<float>& rgba) const {
+void ShadingPass::ReadBack(Plane<float>& rgba) const {
   const size_t row = 4 * size_t(width);
   std::vector<float> bottomUp(row * size_t(height));
   glPixelStorei(GL_PACK_ALIGNMENT, 1);

@@ -267,7 +267,7 @@ FrameStats RenderGBuffer(const PrimitiveScene& scene, const Camera& camera,
   // ---- raster: one task per tile, disjoint pixels, no locks ----
   if (out.width != camera.width || out.height != camera.height ||
       out.channels != (options.channels | kDepth))
-    out.Resize(camera.width, camera.height, options.channels);
+    out.Resize(camera.width, camera.height, options.channels, /*clear=*/false);  // CopyOut writes every sample
   ws.tileCounters.assign(nTiles, {});
   const detail::PrimArrays prims{ws.setup.spheres.data(), ws.setup.cylinders.data(),
                                  ws.setup.ellipsoids.data()};

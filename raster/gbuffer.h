@@ -7,16 +7,11 @@
 #include <cstdint>
 #include <vector>
 
-#include <tbb/cache_aligned_allocator.h>
+#include "common/plane.h"
 
 namespace softmol::raster {
 
-// A full-frame plane, its rows on cache-line boundaries' grid (the start is cache-line
-// aligned and the kernels' tiles are multiples of 16 bytes wide): the copy-out streams whole
-// lines to it, and a stream store to a misaligned plane costs a read of each split line —
-// measured 25× slower than to an aligned one on the 2-core machine (docs/PERFORMANCE.md).
-template <class T>
-using Plane = std::vector<T, tbb::cache_aligned_allocator<T>>;
+using softmol::Plane;  // common/plane.h: cache-line aligned, resize leaves new samples unset
 
 enum GBufferChannel : uint32_t {
   kDepth = 1,        // eye-space distance along the view axis, Å; +inf on background
@@ -47,8 +42,10 @@ struct GBuffer {
   Plane<float> capped;
 
   // Sizes the planes of `channels` (| kDepth) and frees the others; keeps capacity when
-  // called again with the same size, so a frame loop does not allocate.
-  void Resize(int w, int h, uint32_t channels);
+  // called again with the same size, so a frame loop does not allocate. Samples a plane gains
+  // are set to 0 in parallel, or with `clear` false left for a caller that writes every sample
+  // of every plane (the rasterizer's copy-out) to touch first.
+  void Resize(int w, int h, uint32_t channels, bool clear = true);
   size_t Index(int x, int y) const { return size_t(y) * size_t(width) + size_t(x); }
 };
 

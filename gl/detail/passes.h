@@ -92,7 +92,7 @@ struct ShadingPass {
   void Run(const GBufferTargets& g, int ssaa, const effects::ShadingOptions& options,
            const effects::Backdrop& backdrop, const effects::ShadeInputs* shadeInputs = nullptr);
   // The target, top row first (RenderedFrame order).
-  void ReadBack(std::vector<float>& rgba) const;
+  void ReadBack(Plane<float>& rgba) const;
 };
 
 // Sobel silhouette and crease lines (↔ effects/outlines.cpp): one R32F strength per G-buffer

@@ -88,7 +88,8 @@ TEST(ShadingGl, MatchesTheCpuBitForBitWithEveryCompositingInput) {
     for (int ssaa : {1, 2})
       for (bool transparent : {false, true}) {
         const effects::Backdrop backdrop{{0.9f, 0.95f, 1.0f}, transparent};
-        std::vector<float> cpu(4 * n / size_t(ssaa * ssaa)), gpu;
+        std::vector<float> cpu(4 * n / size_t(ssaa * ssaa));
+        Plane<float> gpu;
         effects::ShadeAndResolve(g, ssaa, effects::ShadingOptions{}, backdrop, in, cpu);
         pass.Run(targets, ssaa, effects::ShadingOptions{}, backdrop, &in);
         pass.ReadBack(gpu);
