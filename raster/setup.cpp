@@ -187,6 +187,24 @@ bool ScreenBox(const ViewSetup& v, int n, const glm::dvec3* c, const double (*S)
          PixelRange(lo[1], hi[1], v.invPixelScale, v.halfHeight, v.height, box.y0, box.y1);
 }
 
+// The angular frame is built in world space (stable from frame to frame for the AO lookup)
+// and carried to eye space, where the kernel dots it with the normal.
+void SetSurfaceFrame(const ViewSetup& v, const glm::dvec3& wa, const glm::dvec3& wb, bool surfaceFrame,
+                     CylinderPrim& p) {
+  if (!surfaceFrame) {
+    p.e1x = p.e1y = p.e1z = p.e2x = p.e2y = p.e2z = 0.0f;
+    return;
+  }
+  glm::dvec3 e1, e2;
+  CylinderFrame(glm::normalize(wb - wa), e1, e2);
+  const glm::dvec3 e1e(glm::dot(v.right, e1), glm::dot(v.up, e1), glm::dot(v.back, e1));
+  const glm::dvec3 e2e(glm::dot(v.right, e2), glm::dot(v.up, e2), glm::dot(v.back, e2));
+  p.e1x = float(e1e.x), p.e1y = float(e1e.y), p.e1z = float(e1e.z);
+  p.e2x = float(e2e.x), p.e2y = float(e2e.y), p.e2z = float(e2e.z);
+}
+
+}  // namespace
+
 bool SetupCylinder(const PrimitiveScene& scene, const ViewSetup& v, size_t i, CylinderPrim& p,
                    bool surfaceFrame) {
   const CylinderSet& in = scene.cylinders;
@@ -231,23 +249,40 @@ bool SetupCylinder(const PrimitiveScene& scene, const ViewSetup& v, size_t i, Cy
   p.len = float(len);
   p.halfLen = float(0.5 * len);
   p.invLen = float(1.0 / len);
-  // The angular frame is built in world space (stable from frame to frame for the AO
-  // lookup) and carried to eye space, where the kernel dots it with the normal.
-  if (surfaceFrame) {
-    glm::dvec3 e1, e2;
-    CylinderFrame(glm::normalize(wb - wa), e1, e2);
-    const glm::dvec3 e1e(glm::dot(v.right, e1), glm::dot(v.up, e1), glm::dot(v.back, e1));
-    const glm::dvec3 e2e(glm::dot(v.right, e2), glm::dot(v.up, e2), glm::dot(v.back, e2));
-    p.e1x = float(e1e.x), p.e1y = float(e1e.y), p.e1z = float(e1e.z);
-    p.e2x = float(e2e.x), p.e2y = float(e2e.y), p.e2z = float(e2e.z);
-  } else {
-    p.e1x = p.e1y = p.e1z = p.e2x = p.e2y = p.e2z = 0.0f;
-  }
+  SetSurfaceFrame(v, wa, wb, surfaceFrame, p);
   p.zMin = ZMinKey(zNear, ZMinFloor(v));
   p.color0 = in.color0[i];
   p.color1 = in.color1[i];
   p.id = uint32_t(scene.spheres.size() + i);
   return true;
+}
+
+namespace {
+
+// SetupCylinder's packing of one lane of the vectorised setup (same conversions, same frame).
+void PackCylinder(const PrimitiveScene& scene, const ViewSetup& v, size_t i, const CylinderSetupLanes& l, size_t j,
+                  double r, bool surfaceFrame, CylinderPrim& p) {
+  const CylinderSet& in = scene.cylinders;
+  p.px = float(l.ax[j]), p.py = float(l.ay[j]), p.pz = float(l.az[j]);
+  p.wx = float(l.wx[j]), p.wy = float(l.wy[j]), p.wz = float(l.wz[j]);
+  p.mx = float(l.mx[j]), p.my = float(l.my[j]), p.mz = float(l.mz[j]);
+  p.pw = float(l.pw[j]);
+  p.c0 = float(l.c0[j]);
+  p.aOrtho = float(l.aOrtho[j]);
+  p.rr = float(r * r);
+  p.invR = float(1.0 / r);
+  p.r = float(r);
+  const double len = l.len[j];
+  p.len = float(len);
+  p.halfLen = float(0.5 * len);
+  p.invLen = float(1.0 / len);
+  SetSurfaceFrame(v, glm::dvec3(in.x0[i], in.y0[i], in.z0[i]), glm::dvec3(in.x1[i], in.y1[i], in.z1[i]), surfaceFrame,
+                  p);
+  p.zMin = float(l.zMin[j]);
+  p.color0 = in.color0[i];
+  p.color1 = in.color1[i];
+  p.id = uint32_t(scene.spheres.size() + i);
+  p.box = {int32_t(l.x0[j]), int32_t(l.y0[j]), int32_t(l.x1[j]), int32_t(l.y1[j])};
 }
 
 void Store3(float out[3], const glm::dvec3& v) {
@@ -329,7 +364,7 @@ uint64_t SetupPrimitives(const PrimitiveScene& scene, const ViewSetup& v, SetupO
   };
   // Each primitive writes only its own slots: deterministic for any partitioning.
   // Spheres: vectorised batches (raster/setup_kernel.cpp), packed here.
-  SphereSetupConstants k;
+  SetupConstants k;
   for (int j = 0; j < 3; ++j) {
     k.eye[j] = v.eye[j], k.right[j] = v.right[j], k.up[j] = v.up[j], k.back[j] = v.back[j];
   }
@@ -375,13 +410,30 @@ uint64_t SetupPrimitives(const PrimitiveScene& scene, const ViewSetup& v, SetupO
       }
     }
   });
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, nC, 4096), [&](const auto& range) {
-    for (size_t i = range.begin(); i != range.end(); ++i) {
-      const CylinderPrim& p = out.cylinders[i];
-      out.cylinderKey[i] = SetupCylinder(scene, v, i, out.cylinders[i], surfaceFrame)
-                               ? std::bit_cast<uint32_t>(p.zMin)
-                               : kCulledKey;
-      out.cylinderEntry[i] = entry(uint32_t(i) | (kCylinderKind << kKindShift), p.zMin, p.box);
+  // Cylinders: vectorised batches too, packed here exactly as SetupCylinder packs.
+  const CylinderSet& cyl = scene.cylinders;
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, (nC + kSetupBatch - 1) / kSetupBatch, 4), [&](const auto& range) {
+    CylinderSetupLanes lanes;
+    double radius[kSetupBatch];
+    for (size_t b = range.begin(); b != range.end(); ++b) {
+      const size_t first = b * kSetupBatch, n = std::min(kSetupBatch, nC - first);
+      for (size_t j = 0; j < n; ++j) radius[j] = cyl.radius[first + j];
+      const CylinderEnds ends{cyl.x0.data() + first, cyl.y0.data() + first, cyl.z0.data() + first,
+                              cyl.x1.data() + first, cyl.y1.data() + first, cyl.z1.data() + first};
+      SetupCylindersBatch(k, ends, radius, n, lanes);
+      for (size_t j = 0; j < n; ++j) {
+        const size_t i = first + j;
+        CylinderPrim& p = out.cylinders[i];
+        if (lanes.valid[j] == 0.0) {
+          p.box = {0, 0, -1, -1};
+          p.zMin = 0.0f;
+          out.cylinderKey[i] = kCulledKey;
+        } else {
+          PackCylinder(scene, v, i, lanes, j, radius[j], surfaceFrame, p);
+          out.cylinderKey[i] = std::bit_cast<uint32_t>(p.zMin);
+        }
+        out.cylinderEntry[i] = entry(uint32_t(i) | (kCylinderKind << kKindShift), p.zMin, p.box);
+      }
     }
   });
   tbb::parallel_for(tbb::blocked_range<size_t>(0, nE, 1024), [&](const auto& range) {

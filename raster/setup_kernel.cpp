@@ -1,7 +1,8 @@
 // raster/setup_kernel.cpp — the sphere setup (the hot path of spacefill: one call per atom per
-// frame) vectorised with Highway in double precision, dispatched once per batch. Same
-// operations as a scalar evaluation (Add Sub Mul Div Sqrt Floor Ceil, compares, selects; no
-// fused ops), so every target computes the same boxes and keys.
+// frame) and the cylinder setup (ball-and-stick: one per bond) vectorised with Highway in
+// double precision, dispatched once per batch. Same operations as a scalar evaluation (Add Sub
+// Mul Div Sqrt Floor Ceil, compares, selects; no fused ops), so every target computes the same
+// boxes and keys; the cylinder lanes follow detail::SetupCylinder operation for operation.
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "raster/setup_kernel.cpp"
 #include "raster/detail/setup_kernel.h"
@@ -34,7 +35,7 @@ HWY_INLINE hn::Mask<D> Range(D d, V lo, V hi, double invScale, double half, doub
 }
 
 template <class D>
-HWY_INLINE void SphereLanes(D d, const detail::SphereSetupConstants& k, const double* x,
+HWY_INLINE void SphereLanes(D d, const detail::SetupConstants& k, const double* x,
                             const double* y, const double* z, const double* r, size_t i,
                             detail::SphereSetupLanes& o) {
   using V = hn::Vec<D>;
@@ -98,7 +99,7 @@ HWY_INLINE void SphereLanes(D d, const detail::SphereSetupConstants& k, const do
   hn::StoreU(hn::IfThenElseZero(valid, hn::Set(d, 1.0)), d, o.valid + i);
 }
 
-void SetupSpheresImpl(const detail::SphereSetupConstants& k, const double* x, const double* y,
+void SetupSpheresImpl(const detail::SetupConstants& k, const double* x, const double* y,
                       const double* z, const double* r, size_t n, detail::SphereSetupLanes& o) {
   const hn::ScalableTag<double> d;
   const hn::CappedTag<double, 1> d1;
@@ -107,13 +108,157 @@ void SetupSpheresImpl(const detail::SphereSetupConstants& k, const double* x, co
   for (; i < n; ++i) SphereLanes(d1, k, x, y, z, r, i, o);
 }
 
+// ---- Cylinders: detail::SetupCylinder (raster/setup.cpp) in lanes ----
+// std::min / std::max as the scalar code evaluates them: (b < a) ? b : a and (a < b) ? b : a.
+template <class V>
+HWY_INLINE V MinLike(V a, V b) {
+  return hn::IfThenElse(hn::Lt(b, a), b, a);
+}
+template <class V>
+HWY_INLINE V MaxLike(V a, V b) {
+  return hn::IfThenElse(hn::Lt(a, b), b, a);
+}
+
+// PixelRange (raster/setup.cpp) in its operation order: FastCeil/FastFloor after clamping to
+// ±1e9, then the on-screen test and the clamp to the screen.
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE hn::Mask<D> PixelRangeLanes(D d, V lo, V hi, double invScale, double half, double size, double slack,
+                                       V& p0, V& p1) {
+  auto clamp = [&](V x) {
+    return hn::IfThenElse(hn::Lt(x, hn::Set(d, -1e9)), hn::Set(d, -1e9),
+                          hn::IfThenElse(hn::Gt(x, hn::Set(d, 1e9)), hn::Set(d, 1e9), x));
+  };
+  const V s = hn::Set(d, invScale), h = hn::Set(d, half), halfPx = hn::Set(d, 0.5), sl = hn::Set(d, slack);
+  const V a = hn::Ceil(clamp(hn::Sub(hn::Sub(hn::Add(hn::Mul(lo, s), h), halfPx), sl)));
+  const V b = hn::Floor(clamp(hn::Add(hn::Sub(hn::Add(hn::Mul(hi, s), h), halfPx), sl)));
+  const V zero = hn::Zero(d), last = hn::Set(d, size - 1.0);
+  const auto ok = hn::AndNot(hn::Or(hn::Lt(b, zero), hn::Gt(a, last)), hn::Le(a, b));
+  p0 = MaxLike(a, zero);
+  p1 = MinLike(b, last);
+  return ok;
+}
+
+// TangentBounds (raster/setup.cpp) for the end disc at eye-space (ci, cz) on one screen axis;
+// Sii, Siz, Szz are the disc's S entries. False where the disc reaches the eye plane.
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE hn::Mask<D> TangentLanes(D d, bool ortho, V ci, V cz, V Sii, V Siz, V Szz, V& lo, V& hi) {
+  const V zero = hn::Zero(d);
+  if (ortho) {
+    const V e = hn::Sqrt(MaxLike(Sii, zero));
+    lo = hn::Sub(ci, e), hi = hn::Add(ci, e);
+    return hn::Eq(zero, zero);
+  }
+  const V A = hn::Sub(hn::Mul(cz, cz), Szz);
+  const auto front = hn::And(hn::Lt(cz, zero), hn::Gt(A, zero));
+  const V Bh = hn::Sub(hn::Mul(ci, cz), Siz);
+  const V C = hn::Sub(hn::Mul(ci, ci), Sii);
+  const V root = hn::Sqrt(MaxLike(hn::Sub(hn::Mul(Bh, Bh), hn::Mul(A, C)), zero));
+  const V q = hn::Neg(hn::Add(Bh, hn::IfThenElse(hn::Ge(Bh, zero), root, hn::Neg(root))));
+  const V safeA = hn::IfThenElse(front, A, hn::Set(d, 1.0));
+  const V r0 = hn::Div(q, safeA);
+  const auto qNonZero = hn::Ne(q, zero);
+  const V r1 = hn::IfThenElse(qNonZero, hn::Div(C, hn::IfThenElse(qNonZero, q, hn::Set(d, 1.0))), r0);
+  lo = MinLike(r0, r1), hi = MaxLike(r0, r1);
+  const V inf = hn::Set(d, HUGE_VAL);
+  return hn::And(front, hn::And(hn::Lt(hn::Abs(lo), inf), hn::Lt(hn::Abs(hi), inf)));
+}
+
+template <class D>
+HWY_INLINE void CylinderLanes(D d, const detail::SetupConstants& k, const detail::CylinderEnds& e,
+                              const double* r, size_t i, detail::CylinderSetupLanes& o) {
+  using V = hn::Vec<D>;
+  auto toEye = [&](const double* x, const double* y, const double* z, V& ex, V& ey, V& ez) {
+    const V px = hn::Sub(hn::LoadU(d, x + i), hn::Set(d, k.eye[0]));
+    const V py = hn::Sub(hn::LoadU(d, y + i), hn::Set(d, k.eye[1]));
+    const V pz = hn::Sub(hn::LoadU(d, z + i), hn::Set(d, k.eye[2]));
+    auto dot = [&](const double* row) {
+      return hn::Add(hn::Add(hn::Mul(hn::Set(d, row[0]), px), hn::Mul(hn::Set(d, row[1]), py)),
+                     hn::Mul(hn::Set(d, row[2]), pz));
+    };
+    ex = dot(k.right), ey = dot(k.up), ez = dot(k.back);
+  };
+  V ax, ay, az, bx, by, bz;
+  toEye(e.x0, e.y0, e.z0, ax, ay, az);
+  toEye(e.x1, e.y1, e.z1, bx, by, bz);
+  const V rad = hn::LoadU(d, r + i);
+  const V zero = hn::Zero(d), one = hn::Set(d, 1.0), inf = hn::Set(d, HUGE_VAL);
+  auto finite = [&](V v) { return hn::Lt(hn::Abs(v), inf); };  // false for NaN and ±inf
+  auto valid = hn::And(hn::And(hn::Gt(rad, zero), hn::Lt(rad, inf)),
+                       hn::And(hn::And(hn::And(finite(ax), finite(ay)), finite(az)),
+                               hn::And(hn::And(finite(bx), finite(by)), finite(bz))));
+  const V dx = hn::Sub(bx, ax), dy = hn::Sub(by, ay), dz = hn::Sub(bz, az);
+  const V len = hn::Sqrt(hn::Add(hn::Add(hn::Mul(dx, dx), hn::Mul(dy, dy)), hn::Mul(dz, dz)));
+  valid = hn::And(valid, hn::Gt(len, zero));
+  const V safeLen = hn::IfThenElse(valid, len, one);
+  const V wx = hn::Div(dx, safeLen), wy = hn::Div(dy, safeLen), wz = hn::Div(dz, safeLen);
+  // The end discs' S = rb²(I − w wᵀ), rb = r + ξ (contour lines, Tarini §5.1).
+  const V rb = hn::Add(rad, hn::Set(d, k.grow));
+  const V rb2 = hn::Mul(rb, rb);
+  const V Sxx = hn::Mul(rb2, hn::Sub(one, hn::Mul(wx, wx)));
+  const V Syy = hn::Mul(rb2, hn::Sub(one, hn::Mul(wy, wy)));
+  const V Szz = hn::Mul(rb2, hn::Sub(one, hn::Mul(wz, wz)));
+  const V Sxz = hn::Mul(rb2, hn::Sub(zero, hn::Mul(wx, wz)));
+  const V Syz = hn::Mul(rb2, hn::Sub(zero, hn::Mul(wy, wz)));
+  const V zExt = hn::Sqrt(MaxLike(Szz, zero));
+  const V naz = hn::Neg(az), nbz = hn::Neg(bz);
+  const V zNear = hn::Sub(MinLike(naz, nbz), zExt), zFar = hn::Add(MaxLike(naz, nbz), zExt);
+  valid = hn::AndNot(hn::Or(hn::Lt(zFar, hn::Set(d, k.nearPlane)), hn::Gt(zNear, hn::Set(d, k.farPlane))), valid);
+  // ScreenBox over both end discs; any disc reaching the eye plane: the whole screen.
+  V lox, hix, loy, hiy, lo, hi;
+  auto bounded = TangentLanes(d, k.ortho, ax, az, Sxx, Sxz, Szz, lox, hix);
+  bounded = hn::And(bounded, TangentLanes(d, k.ortho, ay, az, Syy, Syz, Szz, loy, hiy));
+  bounded = hn::And(bounded, TangentLanes(d, k.ortho, bx, bz, Sxx, Sxz, Szz, lo, hi));
+  lox = MinLike(lox, lo), hix = MaxLike(hix, hi);
+  bounded = hn::And(bounded, TangentLanes(d, k.ortho, by, bz, Syy, Syz, Szz, lo, hi));
+  loy = MinLike(loy, lo), hiy = MaxLike(hiy, hi);
+  V x0, x1, y0, y1;
+  const auto okx = PixelRangeLanes(d, lox, hix, k.invPixelScale, k.halfWidth, k.width, k.slack, x0, x1);
+  const auto oky = PixelRangeLanes(d, loy, hiy, k.invPixelScale, k.halfHeight, k.height, k.slack, y0, y1);
+  x0 = hn::IfThenElse(bounded, x0, zero), y0 = hn::IfThenElse(bounded, y0, zero);
+  x1 = hn::IfThenElse(bounded, x1, hn::Set(d, k.width - 1.0));
+  y1 = hn::IfThenElse(bounded, y1, hn::Set(d, k.height - 1.0));
+  valid = hn::And(valid, hn::Or(hn::Not(bounded), hn::And(okx, oky)));
+  // The kernel's constants (eq. 3 for the infinite cylinder about the axis through a).
+  const V mx = hn::Sub(hn::Mul(ay, wz), hn::Mul(wy, az));
+  const V my = hn::Sub(hn::Mul(az, wx), hn::Mul(wz, ax));
+  const V mz = hn::Sub(hn::Mul(ax, wy), hn::Mul(wx, ay));
+  const V pw = hn::Add(hn::Add(hn::Mul(ax, wx), hn::Mul(ay, wy)), hn::Mul(az, wz));
+  const V qx = hn::Sub(ax, hn::Mul(pw, wx)), qy = hn::Sub(ay, hn::Mul(pw, wy)), qz = hn::Sub(az, hn::Mul(pw, wz));
+  const V perpLen = hn::Sqrt(hn::Add(hn::Add(hn::Mul(qx, qx), hn::Mul(qy, qy)), hn::Mul(qz, qz)));
+  const V c0 = hn::Mul(hn::Sub(perpLen, rad), hn::Add(perpLen, rad));
+  const V aOrtho = hn::Add(hn::Mul(wx, wx), hn::Mul(wy, wy));
+  const V zc = MaxLike(zNear, hn::Set(d, k.zMinFloor));
+  const V zMin = hn::Sub(zc, hn::Mul(hn::Set(d, 1e-5), hn::Abs(zc)));
+  hn::StoreU(ax, d, o.ax + i), hn::StoreU(ay, d, o.ay + i), hn::StoreU(az, d, o.az + i);
+  hn::StoreU(wx, d, o.wx + i), hn::StoreU(wy, d, o.wy + i), hn::StoreU(wz, d, o.wz + i);
+  hn::StoreU(mx, d, o.mx + i), hn::StoreU(my, d, o.my + i), hn::StoreU(mz, d, o.mz + i);
+  hn::StoreU(pw, d, o.pw + i), hn::StoreU(c0, d, o.c0 + i), hn::StoreU(aOrtho, d, o.aOrtho + i);
+  hn::StoreU(len, d, o.len + i), hn::StoreU(zMin, d, o.zMin + i);
+  hn::StoreU(x0, d, o.x0 + i), hn::StoreU(x1, d, o.x1 + i), hn::StoreU(y0, d, o.y0 + i), hn::StoreU(y1, d, o.y1 + i);
+  hn::StoreU(hn::IfThenElseZero(valid, one), d, o.valid + i);
+}
+
+void SetupCylindersImpl(const detail::SetupConstants& k, const detail::CylinderEnds& e, const double* r, size_t n,
+                        detail::CylinderSetupLanes& o) {
+  const hn::ScalableTag<double> d;
+  const hn::CappedTag<double, 1> d1;
+  size_t i = 0;
+  for (; i + hn::Lanes(d) <= n; i += hn::Lanes(d)) CylinderLanes(d, k, e, r, i, o);
+  for (; i < n; ++i) CylinderLanes(d1, k, e, r, i, o);
+}
+
 }  // namespace softmol::raster::HWY_NAMESPACE
 HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
 namespace softmol::raster::detail {
 HWY_EXPORT(SetupSpheresImpl);
-void SetupSpheresBatch(const SphereSetupConstants& k, const double* x, const double* y,
+HWY_EXPORT(SetupCylindersImpl);
+void SetupCylindersBatch(const SetupConstants& k, const CylinderEnds& ends, const double* r, size_t n,
+                         CylinderSetupLanes& o) {
+  HWY_DYNAMIC_DISPATCH(SetupCylindersImpl)(k, ends, r, n, o);
+}
+void SetupSpheresBatch(const SetupConstants& k, const double* x, const double* y,
                        const double* z, const double* r, size_t n, SphereSetupLanes& o) {
   HWY_DYNAMIC_DISPATCH(SetupSpheresImpl)(k, x, y, z, r, n, o);
 }

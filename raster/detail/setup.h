@@ -48,6 +48,11 @@ FrameConstants MakeFrameConstants(const ViewSetup& view, const FrameOptions& opt
 bool TangentBounds(bool ortho, const glm::dvec3& c, const double S[3][3], int axis, double& lo,
                    double& hi);
 
+// The scalar cylinder setup of primitive `i`, which reads like the paper (eq. 3-5): false when
+// culled (then only p.box, empty, is set). SetupPrimitives runs its vectorised twin
+// (raster/setup_kernel.cpp), which gives the same CylinderPrim bit for bit (tested).
+bool SetupCylinder(const PrimitiveScene& scene, const ViewSetup& view, size_t i, CylinderPrim& p, bool surfaceFrame);
+
 // Sets up every primitive; returns the number culled. Culled primitives get an empty box.
 struct SetupOutput {
   std::vector<SpherePrim> spheres;

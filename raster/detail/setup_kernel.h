@@ -1,13 +1,15 @@
-// raster/detail/setup_kernel.h — vectorised sphere setup (raster/setup_kernel.cpp): eye-space
-// centres, tight boxes (Sigg et al. eq. 5 for S = r²I) and sort keys for a batch of spheres,
-// in double, as structure-of-arrays lanes that setup.cpp then packs into SpherePrim.
+// raster/detail/setup_kernel.h — vectorised sphere and cylinder setup (raster/setup_kernel.cpp):
+// eye-space constants, tight boxes (Sigg et al. eq. 5: S = r²I for a sphere, r²(I − wwᵀ) for a
+// cylinder's end discs) and sort keys for a batch, in double, as structure-of-arrays lanes that
+// setup.cpp then packs into SpherePrim / CylinderPrim. The cylinder kernel's scalar twin is
+// detail::SetupCylinder (raster/setup.cpp), which it equals bit for bit.
 #pragma once
 
 #include <cstddef>
 
 namespace softmol::raster::detail {
 
-struct SphereSetupConstants {
+struct SetupConstants {
   double eye[3], right[3], up[3], back[3];
   double invPixelScale, halfWidth, halfHeight, width, height, nearPlane, farPlane, slack;
   double grow;  // contour width ξ: boxes, culling and zMin use the radius r + ξ (0: off)
@@ -23,8 +25,23 @@ struct SphereSetupLanes {  // kSetupBatch entries each
   double valid[kSetupBatch];  // 1 or 0
 };
 
+struct CylinderSetupLanes {  // kSetupBatch entries each
+  double ax[kSetupBatch], ay[kSetupBatch], az[kSetupBatch];  // end 0, eye space
+  double wx[kSetupBatch], wy[kSetupBatch], wz[kSetupBatch];  // unit axis
+  double mx[kSetupBatch], my[kSetupBatch], mz[kSetupBatch];  // a × w
+  double pw[kSetupBatch], c0[kSetupBatch], aOrtho[kSetupBatch], len[kSetupBatch];
+  double zMin[kSetupBatch], x0[kSetupBatch], x1[kSetupBatch], y0[kSetupBatch], y1[kSetupBatch];
+  double valid[kSetupBatch];  // 1 or 0
+};
+
 // n <= kSetupBatch; r holds the radii promoted to double.
-void SetupSpheresBatch(const SphereSetupConstants& k, const double* x, const double* y,
+void SetupSpheresBatch(const SetupConstants& k, const double* x, const double* y,
                        const double* z, const double* r, size_t n, SphereSetupLanes& out);
+// End 0 at (x0, y0, z0)[i], end 1 at (x1, y1, z1)[i]; the same n and radii as for spheres.
+struct CylinderEnds {
+  const double *x0, *y0, *z0, *x1, *y1, *z1;
+};
+void SetupCylindersBatch(const SetupConstants& k, const CylinderEnds& ends, const double* r, size_t n,
+                         CylinderSetupLanes& out);
 
 }  // namespace softmol::raster::detail

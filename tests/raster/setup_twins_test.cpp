@@ -1,0 +1,84 @@
+// tests/raster/setup_twins_test.cpp — the vectorised cylinder setup (raster/setup_kernel.cpp,
+// what SetupPrimitives runs) equals its scalar twin detail::SetupCylinder bit for bit: the same
+// culling and, for every cylinder kept, the same CylinderPrim (constants, frame, key, box), on
+// every SIMD target this build and CPU support, in perspective and parallel projection, with
+// and without contour lines and a near clip, and with cylinders crossing the eye plane.
+#include <gtest/gtest.h>
+#include <hwy/targets.h>
+
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "raster/detail/setup.h"
+#include "tests/support/scenes.h"
+
+namespace softmol::raster {
+namespace {
+
+std::vector<test::NamedScene> Scenes() {
+  std::vector<test::NamedScene> s;
+  s.push_back(test::RandomBallsAndSticks(21, 3000, 320, 200, false));
+  s.push_back(test::RandomBallsAndSticks(22, 3000, 320, 200, true));
+  for (auto& a : test::AdversarialScenes()) s.push_back(std::move(a));
+  // The eye inside the cloud: cylinders through the eye plane get the whole screen.
+  test::NamedScene inside = test::RandomBallsAndSticks(23, 2000, 160, 120, false);
+  const BoundingSphere b = inside.scene.Bounds();
+  inside.camera.eye = b.center;
+  inside.camera.nearPlane = 0.01;
+  inside.name = "eye inside";
+  s.push_back(std::move(inside));
+  return s;
+}
+
+// Contour lines grow the boxes; a near clip through the middle turns capping on.
+FrameOptions EdgeOptions(const test::NamedScene& s) {
+  FrameOptions o;
+  o.contourWidth = 0.3f;
+  o.contourDepthAware = true;
+  const BoundingSphere b = s.scene.Bounds();
+  o.nearClip = float(glm::length(b.center - s.camera.eye));
+  return o;
+}
+
+// Returns the number of cylinders compared field by field.
+size_t ExpectTwinsAgree(const test::NamedScene& s, const detail::ViewSetup& view, bool surfaceFrame,
+                        const std::string& where) {
+  detail::SetupOutput out;
+  detail::SetupPrimitives(s.scene, view, out, surfaceFrame);
+  size_t kept = 0;
+  for (size_t i = 0; i < s.scene.cylinders.size(); ++i) {
+    detail::CylinderPrim scalar;
+    std::memset(&scalar, 0, sizeof scalar);
+    const bool visible = detail::SetupCylinder(s.scene, view, i, scalar, surfaceFrame);
+    EXPECT_EQ(out.cylinderKey[i] != detail::kCulledKey, visible) << where << " cylinder " << i;
+    if (!visible || out.cylinderKey[i] == detail::kCulledKey) continue;
+    ++kept;
+    EXPECT_EQ(std::memcmp(&scalar, &out.cylinders[i], sizeof scalar), 0) << where << " cylinder " << i;
+  }
+  return kept;
+}
+
+TEST(RasterSetupTwins, VectorisedCylinderSetupEqualsTheScalarOneBitForBit) {
+  const std::vector<test::NamedScene> scenes = Scenes();
+  size_t kept = 0;
+  int targets = 0;
+  for (const uint32_t target : hwy::SupportedAndGeneratedTargets()) {
+    hwy::SetSupportedTargetsForTest(target);
+    ++targets;
+    for (const test::NamedScene& s : scenes) {
+      const std::string where = std::string(hwy::TargetName(target)) + " " + s.name;
+      for (bool surfaceFrame : {true, false}) {
+        kept += ExpectTwinsAgree(s, detail::MakeViewSetup(s.camera, s.scene), surfaceFrame, where);
+        kept += ExpectTwinsAgree(s, detail::MakeViewSetup(s.camera, s.scene, EdgeOptions(s)), surfaceFrame,
+                                 where + " (edges)");
+      }
+    }
+  }
+  hwy::SetSupportedTargetsForTest(0);
+  EXPECT_GE(targets, 2);
+  EXPECT_GT(kept, size_t(targets) * 4000u) << "the scenes should keep most of their cylinders";
+}
+
+}  // namespace
+}  // namespace softmol::raster
