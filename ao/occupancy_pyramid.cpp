@@ -213,35 +213,35 @@ float OccupancyPyramid::At(int level, int x, int y, int z) const {
                      size_t(x)];
 }
 
-void BuildOccupancyPyramid(const raster::PrimitiveScene& scene, const PyramidOptions& options,
-                           OccupancyPyramid& pyr) {
-  const int res = options.resolution;
-  SOFTMOL_CHECK(res >= 32 && res <= 256 && std::has_single_bit(unsigned(res)));
-  SOFTMOL_CHECK(options.coarsest >= 1 && options.coarsest <= res &&
-                std::has_single_bit(unsigned(options.coarsest)));
+namespace {
 
-  // Box of every drawable element (double, world space). min/max are exact, so the chunked
-  // reduction gives the same box for any thread count.
-  const auto& S = scene.spheres;
-  const auto& E = scene.ellipsoids;
-  const auto& C = scene.cylinders;
-  const size_t nS = S.size(), nE = E.size(), nC = C.size(), n = nS + nE + nC;
-  auto ellipsoidRadius = [&](size_t i) {  // same volume: ∛|det A|
-    const auto& m = E.axes[i];
+// The scene's drawable elements in one index space: spheres, then ellipsoids (as spheres of
+// the same volume, radius ∛|det A|), then cylinders (bonds).
+struct Elements {
+  const raster::SphereSet& S;
+  const raster::EllipsoidSet& E;
+  const raster::CylinderSet& C;
+  size_t nS, nE, n;
+  explicit Elements(const raster::PrimitiveScene& scene)
+      : S(scene.spheres), E(scene.ellipsoids), C(scene.cylinders), nS(S.size()), nE(E.size()),
+        n(S.size() + E.size() + C.size()) {}
+  bool Bond(size_t i) const { return i >= nS + nE; }
+  double EllipsoidRadius(size_t j) const {
+    const auto& m = E.axes[j];
     const double det = double(m[0]) * (double(m[4]) * m[8] - double(m[5]) * m[7]) -
                        double(m[3]) * (double(m[1]) * m[8] - double(m[2]) * m[7]) +
                        double(m[6]) * (double(m[1]) * m[5] - double(m[2]) * m[4]);
     return std::cbrt(std::abs(det));
-  };
+  }
   // Element i: its world ends and radius, or false when it is not drawable.
-  auto world = [&](size_t i, glm::dvec3& a, glm::dvec3& b, double& r) {
+  bool World(size_t i, glm::dvec3& a, glm::dvec3& b, double& r) const {
     if (i < nS) {
       a = b = glm::dvec3(S.x[i], S.y[i], S.z[i]);
       r = S.radius[i];
     } else if (i < nS + nE) {
       const size_t j = i - nS;
       a = b = glm::dvec3(E.x[j], E.y[j], E.z[j]);
-      r = ellipsoidRadius(j);
+      r = EllipsoidRadius(j);
     } else {
       const size_t j = i - nS - nE;
       a = glm::dvec3(C.x0[j], C.y0[j], C.z0[j]);
@@ -249,55 +249,67 @@ void BuildOccupancyPyramid(const raster::PrimitiveScene& scene, const PyramidOpt
       r = C.radius[j];
     }
     return r > 0.0 && std::isfinite(r) && Finite3(a.x, a.y, a.z) && Finite3(b.x, b.y, b.z);
-  };
+  }
+};
+
+// Box of every drawable element (double, world space); the unit cube when there is none.
+// min/max are exact, so the chunked reduction gives the same box for any thread count.
+void DrawableBox(const Elements& el, glm::dvec3& lo, glm::dvec3& hi) {
   constexpr size_t kChunks = 64;
-  const size_t chunk = (n + kChunks - 1) / kChunks;
+  const size_t chunk = (el.n + kChunks - 1) / kChunks;
   std::vector<glm::dvec3> chunkLo(kChunks, glm::dvec3(INFINITY));
   std::vector<glm::dvec3> chunkHi(kChunks, glm::dvec3(-INFINITY));
   tbb::parallel_for(size_t(0), kChunks, [&](size_t c) {
-    glm::dvec3 lo(INFINITY), hi(-INFINITY), a, b;
+    glm::dvec3 l(INFINITY), h(-INFINITY), a, b;
     double r;
-    for (size_t i = c * chunk; i < std::min(n, (c + 1) * chunk); ++i)
-      if (world(i, a, b, r)) {
-        lo = glm::min(lo, glm::min(a, b) - r);
-        hi = glm::max(hi, glm::max(a, b) + r);
+    for (size_t i = c * chunk; i < std::min(el.n, (c + 1) * chunk); ++i)
+      if (el.World(i, a, b, r)) {
+        l = glm::min(l, glm::min(a, b) - r);
+        h = glm::max(h, glm::max(a, b) + r);
       }
-    chunkLo[c] = lo, chunkHi[c] = hi;
+    chunkLo[c] = l, chunkHi[c] = h;
   });
-  glm::dvec3 lo(INFINITY), hi(-INFINITY);
+  lo = glm::dvec3(INFINITY), hi = glm::dvec3(-INFINITY);
   for (size_t c = 0; c < kChunks; ++c) lo = glm::min(lo, chunkLo[c]), hi = glm::max(hi, chunkHi[c]);
   if (!(lo.x <= hi.x)) lo = glm::dvec3(0.0), hi = glm::dvec3(1.0);  // nothing drawable
+}
 
-  // A cube (isotropic voxels, so a cone's tangent sphere maps to one level) with one finest
-  // voxel of margin on each side, so no surface sits on the outer voxel faces.
+// A cube around [lo, hi] (isotropic voxels, so a cone's tangent sphere maps to one level)
+// with one finest voxel of margin on each side, so no surface sits on the outer voxel faces;
+// sizes every level. Returns the finest voxel's side.
+double LayOutLevels(const glm::dvec3& lo, const glm::dvec3& hi, const PyramidOptions& options,
+                    OccupancyPyramid& pyr) {
+  const int res = options.resolution;
   const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z, 1e-3});
   const double voxel = extent / double(res - 2);
   pyr.size = voxel * res;
   pyr.origin = 0.5 * (lo + hi) - 0.5 * pyr.size;
-  pyr.levels.resize(size_t(std::countr_zero(unsigned(res)) -
-                           std::countr_zero(unsigned(options.coarsest)) + 1));
+  pyr.levels.resize(size_t(std::countr_zero(unsigned(res)) - std::countr_zero(unsigned(options.coarsest)) + 1));
   for (size_t l = 0; l < pyr.levels.size(); ++l) {
     PyramidLevel& L = pyr.levels[l];
     L.resolution = res >> l;
     L.voxelSize = pyr.size / L.resolution;
     L.occupancy.resize(size_t(L.resolution) * size_t(L.resolution) * size_t(L.resolution));
   }
+  return voxel;
+}
 
-  // Elements in finest voxel units (relative to the origin in double, then float).
+// Every element in finest voxel units (relative to the origin in double, then float), with
+// the z slices it can reach; an element that is not drawable gets an empty range.
+void PlaceElements(const Elements& el, double voxel, int res, OccupancyPyramid& pyr) {
   const double inv = 1.0 / voxel;
   std::vector<Element>& elems = pyr.elements;
-  elems.resize(n);
-  const tbb::blocked_range<size_t> all(0, n, 4096);
-  tbb::parallel_for(all, [&](const tbb::blocked_range<size_t>& rg) {
+  elems.resize(el.n);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, el.n, 4096), [&](const tbb::blocked_range<size_t>& rg) {
     glm::dvec3 a, b;
     double r;
     for (size_t i = rg.begin(); i < rg.end(); ++i) {
       Element& e = elems[i];
-      if (!world(i, a, b, r)) {
+      if (!el.World(i, a, b, r)) {
         e.z0 = 1, e.z1 = 0;
         continue;
       }
-      e.bond = i >= nS + nE;
+      e.bond = el.Bond(i);
       e.a = glm::vec3((a - pyr.origin) * inv);
       e.b = glm::vec3((b - pyr.origin) * inv);
       e.radius = float(r * inv);
@@ -307,20 +319,20 @@ void BuildOccupancyPyramid(const raster::PrimitiveScene& scene, const PyramidOpt
       e.z1 = std::clamp(int(zh), 0, res - 1);
     }
   });
+}
 
-  pyr.repeatsSkipped = SkipRepeatedElements(elems, res);
-
-  // Each slab's elements, in index order (common/binning.h).
+// The finest level: elements binned to the slabs of z slices they touch (in index order,
+// common/binning.h), one task per slab adding them in that order, then clamped to 1.
+void SplatFinestLevel(int res, OccupancyPyramid& pyr) {
+  const std::vector<Element>& elems = pyr.elements;
   const int slabs = res / kSlabSlices;
   BinItems(
-      n, size_t(slabs),
+      elems.size(), size_t(slabs),
       [&](size_t i, auto&& f) {
         if (elems[i].z0 <= elems[i].z1)
-          for (int s = elems[i].z0 / kSlabSlices; s <= elems[i].z1 / kSlabSlices; ++s)
-            f(size_t(s));
+          for (int s = elems[i].z0 / kSlabSlices; s <= elems[i].z1 / kSlabSlices; ++s) f(size_t(s));
       },
       [](size_t i) { return uint32_t(i); }, pyr.bins, pyr.binned);
-
   float* fine = pyr.levels[0].occupancy.data();
   const size_t slice = size_t(res) * size_t(res);
   tbb::parallel_for(0, slabs, [&](int s) {
@@ -337,8 +349,10 @@ void BuildOccupancyPyramid(const raster::PrimitiveScene& scene, const PyramidOpt
     }
     for (float* v = slab; v < slab + kSlabSlices * slice; ++v) *v = *v < 1.0f ? *v : 1.0f;
   });
+}
 
-  // Coarser levels: mean of the 8 children, summed in a fixed order.
+// Coarser levels: mean of the 8 children, summed in a fixed order.
+void AverageCoarserLevels(OccupancyPyramid& pyr) {
   for (size_t l = 1; l < pyr.levels.size(); ++l) {
     const PyramidLevel& child = pyr.levels[l - 1];
     PyramidLevel& L = pyr.levels[l];
@@ -348,12 +362,29 @@ void BuildOccupancyPyramid(const raster::PrimitiveScene& scene, const PyramidOpt
         for (size_t x = 0; x < r; ++x) {
           const float* c = child.occupancy.data() + ((2 * z) * cr + 2 * y) * cr + 2 * x;
           const float* c1 = c + cr * cr;
-          const float sum = ((c[0] + c[1]) + (c[cr] + c[cr + 1])) +
-                            ((c1[0] + c1[1]) + (c1[cr] + c1[cr + 1]));
+          const float sum = ((c[0] + c[1]) + (c[cr] + c[cr + 1])) + ((c1[0] + c1[1]) + (c1[cr] + c1[cr + 1]));
           L.occupancy[(z * r + y) * r + x] = sum * 0.125f;
         }
     });
   }
+}
+
+}  // namespace
+
+void BuildOccupancyPyramid(const raster::PrimitiveScene& scene, const PyramidOptions& options,
+                           OccupancyPyramid& pyr) {
+  const int res = options.resolution;
+  SOFTMOL_CHECK(res >= 32 && res <= 256 && std::has_single_bit(unsigned(res)));
+  SOFTMOL_CHECK(options.coarsest >= 1 && options.coarsest <= res &&
+                std::has_single_bit(unsigned(options.coarsest)));
+  const Elements elements(scene);
+  glm::dvec3 lo, hi;
+  DrawableBox(elements, lo, hi);
+  const double voxel = LayOutLevels(lo, hi, options, pyr);
+  PlaceElements(elements, voxel, res, pyr);
+  pyr.repeatsSkipped = SkipRepeatedElements(pyr.elements, res);
+  SplatFinestLevel(res, pyr);
+  AverageCoarserLevels(pyr);
   pyr.inputHash = 0;  // unknown: only UpdateOccupancyPyramid pays for hashing
   pyr.hashed = false;
   pyr.built = true;
