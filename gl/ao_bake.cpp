@@ -26,40 +26,6 @@ namespace {
 constexpr int kLocalSize = 64;      // local_size_x of both shaders
 constexpr int kMaxGroups = 65535;   // the dispatch limit GL 4.5 guarantees per dimension
 
-std::string InfoLog(GLuint object, bool program) {
-  GLint len = 0;
-  (program ? glGetProgramiv : glGetShaderiv)(object, GL_INFO_LOG_LENGTH, &len);
-  std::string log(size_t(len > 0 ? len : 1), '\0');
-  (program ? glGetProgramInfoLog : glGetShaderInfoLog)(object, len, nullptr, log.data());
-  return log;
-}
-
-uint32_t BuildCompute(const char* path) {
-  const std::string source = StageSource(path, "");
-  const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
-  const char* text = source.c_str();
-  glShaderSource(shader, 1, &text, nullptr);
-  glCompileShader(shader);
-  GLint ok = 0;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    const std::string log = InfoLog(shader, false);
-    glDeleteShader(shader);
-    throw std::runtime_error(std::string("GLSL compile error in ") + path + ":\n" + log);
-  }
-  const GLuint program = glCreateProgram();
-  glAttachShader(program, shader);
-  glLinkProgram(program);
-  glDeleteShader(shader);
-  glGetProgramiv(program, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    const std::string log = InfoLog(program, true);
-    glDeleteProgram(program);
-    throw std::runtime_error(std::string("GLSL link error in ") + path + ":\n" + log);
-  }
-  return program;
-}
-
 // One storage buffer holding `data` (at least one word: GL has no empty buffer store).
 template <class T>
 GLuint Storage(const std::vector<T>& data) {
@@ -223,9 +189,9 @@ void Finish(GLuint p, const BakeBuffers& b, const ao::AoAtlas& atlas) {
 }  // namespace
 
 void AoBakePass::Create() {
-  mapsProgram = BuildCompute("gl/shaders/ao_bake_maps.comp");
-  texelProgram = BuildCompute("gl/shaders/ao_bake_texels.comp");
-  finishProgram = BuildCompute("gl/shaders/ao_bake_finish.comp");
+  mapsProgram = BuildComputeProgram("gl/shaders/ao_bake_maps.comp");
+  texelProgram = BuildComputeProgram("gl/shaders/ao_bake_texels.comp");
+  finishProgram = BuildComputeProgram("gl/shaders/ao_bake_finish.comp");
 }
 
 void AoBakePass::Release() {

@@ -1,6 +1,7 @@
 // gl/program.cpp — shader text assembly and compilation (see program.h).
 #include "gl/program.h"
 
+#include <initializer_list>
 #include <map>
 #include <stdexcept>
 
@@ -21,6 +22,14 @@ const std::map<std::string, std::string>& Sources() {
   return sources;
 }
 
+std::string InfoLog(GLuint object, bool program) {
+  GLint len = 0;
+  (program ? glGetProgramiv : glGetShaderiv)(object, GL_INFO_LOG_LENGTH, &len);
+  std::string log(size_t(len > 0 ? len : 1), '\0');
+  (program ? glGetProgramInfoLog : glGetShaderInfoLog)(object, len, nullptr, log.data());
+  return log;
+}
+
 uint32_t Compile(GLenum type, const std::string& path, const std::string& source) {
   const GLuint shader = glCreateShader(type);
   const char* text = source.c_str();
@@ -29,14 +38,27 @@ uint32_t Compile(GLenum type, const std::string& path, const std::string& source
   GLint ok = 0;
   glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
   if (!ok) {
-    GLint len = 0;
-    glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &len);
-    std::string log(size_t(len > 0 ? len : 1), '\0');
-    glGetShaderInfoLog(shader, len, nullptr, log.data());
+    const std::string log = InfoLog(shader, false);
     glDeleteShader(shader);
     throw std::runtime_error("GLSL compile error in " + path + ":\n" + log);
   }
   return shader;
+}
+
+// Links the compiled `shaders` into a program and deletes them; `what` names the sources.
+uint32_t Link(std::initializer_list<GLuint> shaders, const std::string& what) {
+  const GLuint program = glCreateProgram();
+  for (GLuint s : shaders) glAttachShader(program, s);
+  glLinkProgram(program);
+  for (GLuint s : shaders) glDeleteShader(s);
+  GLint ok = 0;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    const std::string log = InfoLog(program, true);
+    glDeleteProgram(program);
+    throw std::runtime_error("GLSL link error (" + what + "):\n" + log);
+  }
+  return program;
 }
 
 }  // namespace
@@ -92,23 +114,11 @@ uint32_t BuildProgram(const std::string& vertexPath, const std::string& fragment
     glDeleteShader(vs);
     throw;
   }
-  const GLuint program = glCreateProgram();
-  glAttachShader(program, vs);
-  glAttachShader(program, fs);
-  glLinkProgram(program);
-  glDeleteShader(vs);
-  glDeleteShader(fs);
-  GLint ok = 0;
-  glGetProgramiv(program, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    GLint len = 0;
-    glGetProgramiv(program, GL_INFO_LOG_LENGTH, &len);
-    std::string log(size_t(len > 0 ? len : 1), '\0');
-    glGetProgramInfoLog(program, len, nullptr, log.data());
-    glDeleteProgram(program);
-    throw std::runtime_error("GLSL link error (" + vertexPath + " + " + fragmentPath + "):\n" + log);
-  }
-  return program;
+  return Link({vs, fs}, vertexPath + " + " + fragmentPath);
+}
+
+uint32_t BuildComputeProgram(const std::string& path, const std::string& defines) {
+  return Link({Compile(GL_COMPUTE_SHADER, path, StageSource(path, defines))}, path);
 }
 
 void DrawProcedural(uint32_t program, uint32_t fbo, int width, int height, uint32_t mode, int vertices,

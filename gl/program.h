@@ -27,6 +27,8 @@ std::string StageSource(const std::string& passPath, const std::string& defines)
 // driver's log on failure. Needs a current context.
 uint32_t BuildProgram(const std::string& vertexPath, const std::string& fragmentPath,
                       const std::string& defines);
+// The same for one compute shader.
+uint32_t BuildComputeProgram(const std::string& path, const std::string& defines = "");
 
 // Runs `program` over every pixel of `fbo`'s width × height viewport (one triangle from
 // gl/shaders/fullscreen.vert; no depth test, no blending): the per-pixel passes.
