@@ -9,28 +9,36 @@
 //     of a process's first frame). A user of Plane writes every element it reads.
 #pragma once
 
+#include <cstddef>
 #include <new>
 #include <utility>
 #include <vector>
 
-#include <tbb/cache_aligned_allocator.h>
-
 namespace softmol {
 
+inline constexpr size_t kPlaneAlignment = 64;  // a cache line
+
+// The global aligned operator new: the same heap as every other allocation, so a plane reuses
+// memory the reader freed instead of adding fresh pages to the process's peak.
 template <class T>
-struct PlaneAllocator : tbb::cache_aligned_allocator<T> {
-  template <class U>
-  struct rebind {
-    using other = PlaneAllocator<U>;
-  };
+struct PlaneAllocator {
+  using value_type = T;
   PlaneAllocator() = default;
   template <class U>
   PlaneAllocator(const PlaneAllocator<U>&) noexcept {}
+  T* allocate(size_t n) {
+    return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t(kPlaneAlignment)));
+  }
+  void deallocate(T* p, size_t) noexcept { ::operator delete(p, std::align_val_t(kPlaneAlignment)); }
   // Default-initialisation for resize(n) (no value: left as the allocator found it).
   template <class U, class... Args>
   void construct(U* p, Args&&... args) {
     if constexpr (sizeof...(Args) == 0) ::new (static_cast<void*>(p)) U;
     else ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+  template <class U>
+  bool operator==(const PlaneAllocator<U>&) const noexcept {
+    return true;
   }
 };
 
