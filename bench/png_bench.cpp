@@ -1,7 +1,8 @@
 // bench/png_bench.cpp — PNG encoding of a real frame (1tii, 1920×1080, shadows), RGB and RGBA:
 // softmol's chunked parallel encoder by filter, zlib level and strategy (bytes and ms: the table
 // in docs/PERFORMANCE.md that chose the defaults), by thread count, the whole WritePng (encode +
-// temporary + rename), and libpng's own serial encoder as the reference.
+// temporary + rename), libpng's own serial encoder as the reference, and the sRGB encode of the
+// linear frame that comes before any of them (effects::EncodeSrgb8).
 #include <png.h>
 
 #include <cstdio>
@@ -20,21 +21,39 @@
 namespace softmol::bench {
 namespace {
 
-// The frame as sRGB bytes: channels 3 (opaque) or 4 (--transparent).
-const std::vector<uint8_t>& Frame(int channels) {
-  static std::vector<uint8_t> rgb, rgba;
-  if (rgb.empty()) {
+// The rendered frame, linear premultiplied RGBA.
+const effects::RenderedFrame& LinearFrame() {
+  static const effects::RenderedFrame f = [] {
     const raster::PrimitiveScene& scene = BenchScene(0, 0);
     raster::Camera cam = raster::DefaultCamera(scene, 1920, 1080);
     raster::FitNearFar(cam, scene);
     effects::RenderOptions ro;
     ro.shadows = true;
-    const effects::RenderedFrame f = effects::RenderFrame(scene, cam, ro);
-    rgb = effects::EncodeSrgb8(f, false);
-    rgba = effects::EncodeSrgb8(f, true);
-  }
+    return effects::RenderFrame(scene, cam, ro);
+  }();
+  return f;
+}
+
+// The frame as sRGB bytes: channels 3 (opaque) or 4 (--transparent).
+const std::vector<uint8_t>& Frame(int channels) {
+  static const std::vector<uint8_t> rgb = effects::EncodeSrgb8(LinearFrame(), false);
+  static const std::vector<uint8_t> rgba = effects::EncodeSrgb8(LinearFrame(), true);
   return channels == 4 ? rgba : rgb;
 }
+
+// Args: channels, threads. The sRGB encode every PNG write starts with (a bucket table, in
+// parallel over pixels).
+void BM_EncodeSrgb8(benchmark::State& state) {
+  const int channels = int(state.range(0));
+  tbb::global_control threads(tbb::global_control::max_allowed_parallelism, size_t(state.range(1)));
+  const effects::RenderedFrame& f = LinearFrame();
+  for (auto _ : state) benchmark::DoNotOptimize(effects::EncodeSrgb8(f, channels == 4));
+}
+BENCHMARK(BM_EncodeSrgb8)
+    ->ArgNames({"ch", "threads"})
+    ->ArgsProduct({{3, 4}, {1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 const char* kFilterNames[] = {"none", "sub", "up", "avg", "paeth", "adaptive"};
 const char* kStrategyNames[] = {"default", "filtered", "rle"};
