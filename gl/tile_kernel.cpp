@@ -29,12 +29,13 @@ uint32_t ChannelOf(int attachment) {
   }
 }
 
-template <class T>
-void UploadArray(GLuint buffer, const std::vector<T>& v) {
+// `v`: a std::vector or an UninitVector of plain structs.
+template <class Vector>
+void UploadArray(GLuint buffer, const Vector& v) {
+  const size_t size = v.size() * sizeof(typename Vector::value_type);
   // Never zero bytes: an empty storage buffer binding is an error on some drivers.
-  const size_t bytes = std::max<size_t>(16, v.size() * sizeof(T));
-  glNamedBufferData(buffer, GLsizeiptr(bytes), nullptr, GL_STREAM_DRAW);
-  if (!v.empty()) glNamedBufferSubData(buffer, 0, GLsizeiptr(v.size() * sizeof(T)), v.data());
+  glNamedBufferData(buffer, GLsizeiptr(std::max<size_t>(16, size)), nullptr, GL_STREAM_DRAW);
+  if (!v.empty()) glNamedBufferSubData(buffer, 0, GLsizeiptr(size), v.data());
 }
 
 GLint Loc(GLuint program, const char* name) { return glGetUniformLocation(program, name); }

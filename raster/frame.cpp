@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cmath>
 #include <cstring>
+#include <span>
 #include <string>
 
 #if defined(__SSE2__)
@@ -200,7 +201,7 @@ size_t FrontToBackOrder(const SetupOutput& su, const FrameConstants& fc, Bins& b
   // one streaming loop per array: the binning then reads one array instead of choosing among
   // three per primitive twice (that fused form measured 15–25% slower on ball-and-stick).
   buckets.resize(nAll);
-  auto quantise = [&](const std::vector<uint32_t>& key, size_t base) {
+  auto quantise = [&](std::span<const uint32_t> key, size_t base) {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, key.size(), 8192), [&](const auto& r) {
       for (size_t i = r.begin(); i != r.end(); ++i)
         buckets[base + i] =

@@ -20,7 +20,7 @@ void SizePlane(Plane<T>& v, bool want, size_t n, bool clear) {
     return;
   }
   const size_t kept = std::min(v.size(), n);
-  v.resize(n);  // new elements uninitialised (PlaneAllocator)
+  v.resize(n);  // new elements uninitialised (UninitAllocator)
   if (!clear) return;
   tbb::parallel_for(tbb::blocked_range<size_t>(kept, n, kClearGrain), [&](const tbb::blocked_range<size_t>& r) {
     std::fill(v.begin() + std::ptrdiff_t(r.begin()), v.begin() + std::ptrdiff_t(r.end()), T(0));

@@ -7,11 +7,11 @@
 #include <cstdint>
 #include <vector>
 
-#include "common/plane.h"
+#include "common/uninit_vector.h"
 
 namespace softmol::raster {
 
-using softmol::Plane;  // common/plane.h: cache-line aligned, resize leaves new samples unset
+using softmol::Plane;  // common/uninit_vector.h: cache-line aligned, resize leaves new samples unset
 
 enum GBufferChannel : uint32_t {
   kDepth = 1,        // eye-space distance along the view axis, Å; +inf on background

@@ -390,8 +390,8 @@ uint64_t SetupPrimitives(const PrimitiveScene& scene, const ViewSetup& v, SetupO
         const size_t i = first + j;
         SpherePrim& p = out.spheres[i];
         if (lanes.valid[j] == 0.0) {
+          p = SpherePrim{};
           p.box = {0, 0, -1, -1};
-          p.zMin = 0.0f;
           out.sphereKey[i] = kCulledKey;
         } else {
           p.cx = float(lanes.cx[j]), p.cy = float(lanes.cy[j]), p.cz = float(lanes.cz[j]);
@@ -425,8 +425,8 @@ uint64_t SetupPrimitives(const PrimitiveScene& scene, const ViewSetup& v, SetupO
         const size_t i = first + j;
         CylinderPrim& p = out.cylinders[i];
         if (lanes.valid[j] == 0.0) {
+          p = CylinderPrim{};
           p.box = {0, 0, -1, -1};
-          p.zMin = 0.0f;
           out.cylinderKey[i] = kCulledKey;
         } else {
           PackCylinder(scene, v, i, lanes, j, radius[j], surfaceFrame, p);

@@ -7,6 +7,7 @@
 #include <glm/vec3.hpp>
 #include <vector>
 
+#include "common/uninit_vector.h"
 #include "raster/camera.h"
 #include "raster/detail/tile.h"
 #include "raster/frame.h"
@@ -54,16 +55,20 @@ bool TangentBounds(bool ortho, const glm::dvec3& c, const double S[3][3], int ax
 bool SetupCylinder(const PrimitiveScene& scene, const ViewSetup& view, size_t i, CylinderPrim& p, bool surfaceFrame);
 
 // Sets up every primitive; returns the number culled. Culled primitives get an empty box.
+// Spheres and cylinders, a frame's bulk, are UninitVectors (common/uninit_vector.h): the
+// parallel setup writes every element, a culled primitive as all zeros but its empty box.
 struct SetupOutput {
-  std::vector<SpherePrim> spheres;
-  std::vector<CylinderPrim> cylinders;
+  UninitVector<SpherePrim> spheres;
+  UninitVector<CylinderPrim> cylinders;
   std::vector<EllipsoidPrim> ellipsoids;
   // Sort keys: bits of zMin (non-negative float, so integer order = float order), or
   // kCulledKey for a culled primitive.
-  std::vector<uint32_t> sphereKey, cylinderKey, ellipsoidKey;
+  UninitVector<uint32_t> sphereKey, cylinderKey;
+  std::vector<uint32_t> ellipsoidKey;
   // What binning needs of each primitive (code, zMin, box), written by setup so that
   // sorting and binning never touch the full primitive constants.
-  std::vector<BinEntry> sphereEntry, cylinderEntry, ellipsoidEntry;
+  UninitVector<BinEntry> sphereEntry, cylinderEntry;
+  std::vector<BinEntry> ellipsoidEntry;
 };
 // `surfaceFrame`: also build the cylinders' angular frames (only kSurfaceCoord reads them).
 uint64_t SetupPrimitives(const PrimitiveScene& scene, const ViewSetup& view, SetupOutput& out,

@@ -1,4 +1,4 @@
-// tests/raster/gbuffer_test.cpp — the G-buffer's planes (common/plane.h) leave new samples
+// tests/raster/gbuffer_test.cpp — the G-buffer's planes (common/uninit_vector.h) leave new samples
 // unset, so two promises carry the bytes: Resize with clearing sets exactly the samples a plane
 // gains to 0 and keeps the rest, and the rasterizer writes every sample of every plane it asked
 // for (a buffer full of garbage comes back equal to a fresh render).
