@@ -2,10 +2,12 @@
 // what SetupPrimitives runs) equals its scalar twin detail::SetupCylinder bit for bit: the same
 // culling and, for every cylinder kept, the same CylinderPrim (constants, frame, key, box), on
 // every SIMD target this build and CPU support, in perspective and parallel projection, with
-// and without contour lines and a near clip, and with cylinders crossing the eye plane.
+// and without contour lines and a near clip, and with cylinders crossing the eye plane. And
+// setup writes every element of its (uninitialised) arrays.
 #include <gtest/gtest.h>
 #include <hwy/targets.h>
 
+#include <algorithm>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -78,6 +80,37 @@ TEST(RasterSetupTwins, VectorisedCylinderSetupEqualsTheScalarOneBitForBit) {
   hwy::SetSupportedTargetsForTest(0);
   EXPECT_GE(targets, 2);
   EXPECT_GT(kept, size_t(targets) * 4000u) << "the scenes should keep most of their cylinders";
+}
+
+// The setup arrays leave new elements unset (common/uninit_vector.h), so setup writes every
+// one: run over arrays full of garbage, a culled primitive comes back as zeros with an empty
+// box, and every key and bin entry is written.
+TEST(RasterSetupTwins, EveryPrimitiveIsWrittenAndCulledOnesAreZeros) {
+  const test::NamedScene s = Scenes().back();  // the eye inside: many culled
+  const detail::ViewSetup view = detail::MakeViewSetup(s.camera, s.scene);
+  detail::SetupOutput out;
+  detail::SetupPrimitives(s.scene, view, out);
+  auto garbage = [](auto& v) { std::memset(static_cast<void*>(v.data()), 0xA5, v.size() * sizeof(v[0])); };
+  garbage(out.spheres), garbage(out.cylinders), garbage(out.sphereKey), garbage(out.cylinderKey);
+  garbage(out.sphereEntry), garbage(out.cylinderEntry);
+  const uint64_t culled = detail::SetupPrimitives(s.scene, view, out);  // same sizes: no reallocation
+  EXPECT_GT(culled, 100u);
+  auto zerosButTheBox = [](auto p) {
+    EXPECT_TRUE(p.box.x0 == 0 && p.box.y0 == 0 && p.box.x1 == -1 && p.box.y1 == -1);
+    p.box = {};
+    const auto* b = reinterpret_cast<const unsigned char*>(&p);
+    return std::all_of(b, b + sizeof p, [](unsigned char c) { return c == 0; });
+  };
+  for (size_t i = 0; i < out.spheres.size(); ++i) {
+    ASSERT_NE(out.sphereKey[i], 0xA5A5A5A5u) << i;
+    ASSERT_NE(out.sphereEntry[i].code, 0xA5A5A5A5u) << i;
+    if (out.sphereKey[i] == detail::kCulledKey) EXPECT_TRUE(zerosButTheBox(out.spheres[i])) << "sphere " << i;
+  }
+  for (size_t i = 0; i < out.cylinders.size(); ++i) {
+    ASSERT_NE(out.cylinderKey[i], 0xA5A5A5A5u) << i;
+    ASSERT_NE(out.cylinderEntry[i].code, 0xA5A5A5A5u) << i;
+    if (out.cylinderKey[i] == detail::kCulledKey) EXPECT_TRUE(zerosButTheBox(out.cylinders[i])) << "cylinder " << i;
+  }
 }
 
 }  // namespace
