@@ -344,30 +344,13 @@ bool SetupEllipsoid(const PrimitiveScene& scene, const ViewSetup& v, size_t i, E
   return true;
 }
 
-}  // namespace
+BinEntry Entry(uint32_t code, float zMin, const PixelBox& b) {
+  return BinEntry{code, zMin, int16_t(b.x0), int16_t(b.y0), int16_t(b.x1), int16_t(b.y1)};
+}
 
-uint64_t SetupPrimitives(const PrimitiveScene& scene, const ViewSetup& v, SetupOutput& out,
-                         bool surfaceFrame) {
-  const size_t nS = scene.spheres.size(), nC = scene.cylinders.size();
-  out.spheres.resize(nS);
-  out.cylinders.resize(nC);
-  out.sphereKey.resize(nS);
-  out.cylinderKey.resize(nC);
-  out.sphereEntry.resize(nS);
-  out.cylinderEntry.resize(nC);
-  const size_t nE = scene.ellipsoids.size();
-  out.ellipsoids.resize(nE);
-  out.ellipsoidKey.resize(nE);
-  out.ellipsoidEntry.resize(nE);
-  auto entry = [](uint32_t code, float zMin, const PixelBox& b) {
-    return BinEntry{code, zMin, int16_t(b.x0), int16_t(b.y0), int16_t(b.x1), int16_t(b.y1)};
-  };
-  // Each primitive writes only its own slots: deterministic for any partitioning.
-  // Spheres: vectorised batches (raster/setup_kernel.cpp), packed here.
+SetupConstants MakeSetupConstants(const ViewSetup& v) {
   SetupConstants k;
-  for (int j = 0; j < 3; ++j) {
-    k.eye[j] = v.eye[j], k.right[j] = v.right[j], k.up[j] = v.up[j], k.back[j] = v.back[j];
-  }
+  for (int j = 0; j < 3; ++j) k.eye[j] = v.eye[j], k.right[j] = v.right[j], k.up[j] = v.up[j], k.back[j] = v.back[j];
   k.invPixelScale = v.invPixelScale;
   k.halfWidth = v.halfWidth, k.halfHeight = v.halfHeight;
   k.width = v.width, k.height = v.height;
@@ -376,79 +359,105 @@ uint64_t SetupPrimitives(const PrimitiveScene& scene, const ViewSetup& v, SetupO
   k.slack = kBoxSlack;
   k.grow = v.contourWidth;
   k.ortho = v.ortho;
+  return k;
+}
+
+// Batches of kSetupBatch primitives, a few per task: `batch(first, n)` sets up primitives
+// [first, first + n). Each primitive writes only its own slots: deterministic for any
+// partitioning.
+template <class Batch>
+void ForEachBatch(size_t count, Batch&& batch) {
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, (count + kSetupBatch - 1) / kSetupBatch, 4), [&](const auto& r) {
+    for (size_t b = r.begin(); b != r.end(); ++b)
+      batch(b * kSetupBatch, std::min(kSetupBatch, count - b * kSetupBatch));
+  });
+}
+
+// Spheres: vectorised batches (raster/setup_kernel.cpp), packed here.
+void SetupSpheres(const PrimitiveScene& scene, const SetupConstants& k, SetupOutput& out) {
   const SphereSet& in = scene.spheres;
-  const size_t batches = (nS + kSetupBatch - 1) / kSetupBatch;
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, batches, 4), [&](const auto& range) {
+  ForEachBatch(in.size(), [&](size_t first, size_t n) {
     SphereSetupLanes lanes;
     double radius[kSetupBatch];
-    for (size_t b = range.begin(); b != range.end(); ++b) {
-      const size_t first = b * kSetupBatch, n = std::min(kSetupBatch, nS - first);
-      for (size_t j = 0; j < n; ++j) radius[j] = in.radius[first + j];
-      SetupSpheresBatch(k, in.x.data() + first, in.y.data() + first, in.z.data() + first, radius, n,
-                        lanes);
-      for (size_t j = 0; j < n; ++j) {
-        const size_t i = first + j;
-        SpherePrim& p = out.spheres[i];
-        if (lanes.valid[j] == 0.0) {
-          p = SpherePrim{};
-          p.box = {0, 0, -1, -1};
-          out.sphereKey[i] = kCulledKey;
-        } else {
-          p.cx = float(lanes.cx[j]), p.cy = float(lanes.cy[j]), p.cz = float(lanes.cz[j]);
-          p.rr = float(lanes.rr[j]);
-          p.c0 = float(lanes.c0[j]);  // |c|² − r² in double (cancellation ≪ float rounding)
-          p.invR = float(1.0 / radius[j]);
-          p.r = float(radius[j]);
-          p.zMin = float(lanes.zMin[j]);
-          p.color = in.color[i];
-          p.id = uint32_t(i);
-          p.box = {int32_t(lanes.x0[j]), int32_t(lanes.y0[j]), int32_t(lanes.x1[j]),
-                   int32_t(lanes.y1[j])};
-          out.sphereKey[i] = std::bit_cast<uint32_t>(p.zMin);
-        }
-        out.sphereEntry[i] = entry(uint32_t(i) | (kSphereKind << kKindShift), p.zMin, p.box);
+    for (size_t j = 0; j < n; ++j) radius[j] = in.radius[first + j];
+    SetupSpheresBatch(k, in.x.data() + first, in.y.data() + first, in.z.data() + first, radius, n, lanes);
+    for (size_t j = 0; j < n; ++j) {
+      const size_t i = first + j;
+      SpherePrim& p = out.spheres[i];
+      if (lanes.valid[j] == 0.0) {
+        p = SpherePrim{};
+        p.box = {0, 0, -1, -1};
+        out.sphereKey[i] = kCulledKey;
+      } else {
+        p.cx = float(lanes.cx[j]), p.cy = float(lanes.cy[j]), p.cz = float(lanes.cz[j]);
+        p.rr = float(lanes.rr[j]);
+        p.c0 = float(lanes.c0[j]);  // |c|² − r² in double (cancellation ≪ float rounding)
+        p.invR = float(1.0 / radius[j]);
+        p.r = float(radius[j]);
+        p.zMin = float(lanes.zMin[j]);
+        p.color = in.color[i];
+        p.id = uint32_t(i);
+        p.box = {int32_t(lanes.x0[j]), int32_t(lanes.y0[j]), int32_t(lanes.x1[j]), int32_t(lanes.y1[j])};
+        out.sphereKey[i] = std::bit_cast<uint32_t>(p.zMin);
       }
+      out.sphereEntry[i] = Entry(uint32_t(i) | (kSphereKind << kKindShift), p.zMin, p.box);
     }
   });
-  // Cylinders: vectorised batches too, packed here exactly as SetupCylinder packs.
+}
+
+// Cylinders: vectorised batches too, packed here exactly as SetupCylinder packs.
+void SetupCylinders(const PrimitiveScene& scene, const ViewSetup& v, const SetupConstants& k, bool surfaceFrame,
+                    SetupOutput& out) {
   const CylinderSet& cyl = scene.cylinders;
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, (nC + kSetupBatch - 1) / kSetupBatch, 4), [&](const auto& range) {
+  ForEachBatch(cyl.size(), [&](size_t first, size_t n) {
     CylinderSetupLanes lanes;
     double radius[kSetupBatch];
-    for (size_t b = range.begin(); b != range.end(); ++b) {
-      const size_t first = b * kSetupBatch, n = std::min(kSetupBatch, nC - first);
-      for (size_t j = 0; j < n; ++j) radius[j] = cyl.radius[first + j];
-      const CylinderEnds ends{cyl.x0.data() + first, cyl.y0.data() + first, cyl.z0.data() + first,
-                              cyl.x1.data() + first, cyl.y1.data() + first, cyl.z1.data() + first};
-      SetupCylindersBatch(k, ends, radius, n, lanes);
-      for (size_t j = 0; j < n; ++j) {
-        const size_t i = first + j;
-        CylinderPrim& p = out.cylinders[i];
-        if (lanes.valid[j] == 0.0) {
-          p = CylinderPrim{};
-          p.box = {0, 0, -1, -1};
-          out.cylinderKey[i] = kCulledKey;
-        } else {
-          PackCylinder(scene, v, i, lanes, j, radius[j], surfaceFrame, p);
-          out.cylinderKey[i] = std::bit_cast<uint32_t>(p.zMin);
-        }
-        out.cylinderEntry[i] = entry(uint32_t(i) | (kCylinderKind << kKindShift), p.zMin, p.box);
+    for (size_t j = 0; j < n; ++j) radius[j] = cyl.radius[first + j];
+    const CylinderEnds ends{cyl.x0.data() + first, cyl.y0.data() + first, cyl.z0.data() + first,
+                            cyl.x1.data() + first, cyl.y1.data() + first, cyl.z1.data() + first};
+    SetupCylindersBatch(k, ends, radius, n, lanes);
+    for (size_t j = 0; j < n; ++j) {
+      const size_t i = first + j;
+      CylinderPrim& p = out.cylinders[i];
+      if (lanes.valid[j] == 0.0) {
+        p = CylinderPrim{};
+        p.box = {0, 0, -1, -1};
+        out.cylinderKey[i] = kCulledKey;
+      } else {
+        PackCylinder(scene, v, i, lanes, j, radius[j], surfaceFrame, p);
+        out.cylinderKey[i] = std::bit_cast<uint32_t>(p.zMin);
       }
+      out.cylinderEntry[i] = Entry(uint32_t(i) | (kCylinderKind << kKindShift), p.zMin, p.box);
     }
   });
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, nE, 1024), [&](const auto& range) {
+}
+
+void SetupEllipsoids(const PrimitiveScene& scene, const ViewSetup& v, SetupOutput& out) {
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, scene.ellipsoids.size(), 1024), [&](const auto& range) {
     for (size_t i = range.begin(); i != range.end(); ++i) {
       const EllipsoidPrim& p = out.ellipsoids[i];
-      out.ellipsoidKey[i] = SetupEllipsoid(scene, v, i, out.ellipsoids[i])
-                                ? std::bit_cast<uint32_t>(p.zMin)
-                                : kCulledKey;
-      out.ellipsoidEntry[i] = entry(uint32_t(i) | (kEllipsoidKind << kKindShift), p.zMin, p.box);
+      out.ellipsoidKey[i] = SetupEllipsoid(scene, v, i, out.ellipsoids[i]) ? std::bit_cast<uint32_t>(p.zMin) : kCulledKey;
+      out.ellipsoidEntry[i] = Entry(uint32_t(i) | (kEllipsoidKind << kKindShift), p.zMin, p.box);
     }
   });
+}
+
+}  // namespace
+
+uint64_t SetupPrimitives(const PrimitiveScene& scene, const ViewSetup& v, SetupOutput& out,
+                         bool surfaceFrame) {
+  const size_t nS = scene.spheres.size(), nC = scene.cylinders.size(), nE = scene.ellipsoids.size();
+  out.spheres.resize(nS), out.sphereKey.resize(nS), out.sphereEntry.resize(nS);
+  out.cylinders.resize(nC), out.cylinderKey.resize(nC), out.cylinderEntry.resize(nC);
+  out.ellipsoids.resize(nE), out.ellipsoidKey.resize(nE), out.ellipsoidEntry.resize(nE);
+  const SetupConstants k = MakeSetupConstants(v);
+  SetupSpheres(scene, k, out);
+  SetupCylinders(scene, v, k, surfaceFrame, out);
+  SetupEllipsoids(scene, v, out);
   uint64_t culled = 0;
-  for (uint32_t k : out.sphereKey) culled += k == kCulledKey ? 1 : 0;
-  for (uint32_t k : out.cylinderKey) culled += k == kCulledKey ? 1 : 0;
-  for (uint32_t k : out.ellipsoidKey) culled += k == kCulledKey ? 1 : 0;
+  for (uint32_t key : out.sphereKey) culled += key == kCulledKey ? 1 : 0;
+  for (uint32_t key : out.cylinderKey) culled += key == kCulledKey ? 1 : 0;
+  for (uint32_t key : out.ellipsoidKey) culled += key == kCulledKey ? 1 : 0;
   return culled;
 }
 
