@@ -34,11 +34,11 @@ HWY_INLINE hn::Mask<D> Range(D d, V lo, V hi, double invScale, double half, doub
   return ok;
 }
 
-template <class D>
-HWY_INLINE void SphereLanes(D d, const detail::SetupConstants& k, const double* x,
-                            const double* y, const double* z, const double* r, size_t i,
-                            detail::SphereSetupLanes& o) {
-  using V = hn::Vec<D>;
+// ViewSetup::ToEye in lanes: camera-relative, then the three dot products, (x + y) + z as
+// glm::dot sums them.
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE void EyeLanes(D d, const detail::SetupConstants& k, const double* x, const double* y, const double* z,
+                         size_t i, V& ex, V& ey, V& ez) {
   const V px = hn::Sub(hn::LoadU(d, x + i), hn::Set(d, k.eye[0]));
   const V py = hn::Sub(hn::LoadU(d, y + i), hn::Set(d, k.eye[1]));
   const V pz = hn::Sub(hn::LoadU(d, z + i), hn::Set(d, k.eye[2]));
@@ -46,12 +46,26 @@ HWY_INLINE void SphereLanes(D d, const detail::SetupConstants& k, const double* 
     return hn::Add(hn::Add(hn::Mul(hn::Set(d, row[0]), px), hn::Mul(hn::Set(d, row[1]), py)),
                    hn::Mul(hn::Set(d, row[2]), pz));
   };
-  const V cx = dot(k.right), cy = dot(k.up), cz = dot(k.back);
+  ex = dot(k.right), ey = dot(k.up), ez = dot(k.back);
+}
+
+// All three finite (false for NaN and ±inf).
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE hn::Mask<D> Finite3Lanes(D d, V x, V y, V z) {
+  const V inf = hn::Set(d, HUGE_VAL);
+  return hn::And(hn::And(hn::Lt(hn::Abs(x), inf), hn::Lt(hn::Abs(y), inf)), hn::Lt(hn::Abs(z), inf));
+}
+
+template <class D>
+HWY_INLINE void SphereLanes(D d, const detail::SetupConstants& k, const double* x,
+                            const double* y, const double* z, const double* r, size_t i,
+                            detail::SphereSetupLanes& o) {
+  using V = hn::Vec<D>;
+  V cx, cy, cz;
+  EyeLanes(d, k, x, y, z, i, cx, cy, cz);
   const V rad = hn::LoadU(d, r + i);
   const V zero = hn::Zero(d), inf = hn::Set(d, HUGE_VAL);
-  auto finite = [&](V v) { return hn::Lt(hn::Abs(v), inf); };  // false for NaN and ±inf
-  auto valid = hn::And(hn::And(hn::Gt(rad, zero), hn::Lt(rad, inf)),
-                       hn::And(hn::And(finite(cx), finite(cy)), finite(cz)));
+  auto valid = hn::And(hn::And(hn::Gt(rad, zero), hn::Lt(rad, inf)), Finite3Lanes(d, cx, cy, cz));
   // Contour lines reach r + ξ from the centre (Tarini §5.1): box, culling and zMin use it.
   // With ξ = 0, rb = rad exactly.
   const V rb = hn::Add(rad, hn::Set(d, k.grow));
@@ -167,25 +181,13 @@ template <class D>
 HWY_INLINE void CylinderLanes(D d, const detail::SetupConstants& k, const detail::CylinderEnds& e,
                               const double* r, size_t i, detail::CylinderSetupLanes& o) {
   using V = hn::Vec<D>;
-  auto toEye = [&](const double* x, const double* y, const double* z, V& ex, V& ey, V& ez) {
-    const V px = hn::Sub(hn::LoadU(d, x + i), hn::Set(d, k.eye[0]));
-    const V py = hn::Sub(hn::LoadU(d, y + i), hn::Set(d, k.eye[1]));
-    const V pz = hn::Sub(hn::LoadU(d, z + i), hn::Set(d, k.eye[2]));
-    auto dot = [&](const double* row) {
-      return hn::Add(hn::Add(hn::Mul(hn::Set(d, row[0]), px), hn::Mul(hn::Set(d, row[1]), py)),
-                     hn::Mul(hn::Set(d, row[2]), pz));
-    };
-    ex = dot(k.right), ey = dot(k.up), ez = dot(k.back);
-  };
   V ax, ay, az, bx, by, bz;
-  toEye(e.x0, e.y0, e.z0, ax, ay, az);
-  toEye(e.x1, e.y1, e.z1, bx, by, bz);
+  EyeLanes(d, k, e.x0, e.y0, e.z0, i, ax, ay, az);
+  EyeLanes(d, k, e.x1, e.y1, e.z1, i, bx, by, bz);
   const V rad = hn::LoadU(d, r + i);
   const V zero = hn::Zero(d), one = hn::Set(d, 1.0), inf = hn::Set(d, HUGE_VAL);
-  auto finite = [&](V v) { return hn::Lt(hn::Abs(v), inf); };  // false for NaN and ±inf
   auto valid = hn::And(hn::And(hn::Gt(rad, zero), hn::Lt(rad, inf)),
-                       hn::And(hn::And(hn::And(finite(ax), finite(ay)), finite(az)),
-                               hn::And(hn::And(finite(bx), finite(by)), finite(bz))));
+                       hn::And(Finite3Lanes(d, ax, ay, az), Finite3Lanes(d, bx, by, bz)));
   const V dx = hn::Sub(bx, ax), dy = hn::Sub(by, ay), dz = hn::Sub(bz, az);
   const V len = hn::Sqrt(hn::Add(hn::Add(hn::Mul(dx, dx), hn::Mul(dy, dy)), hn::Mul(dz, dz)));
   valid = hn::And(valid, hn::Gt(len, zero));

@@ -14,24 +14,13 @@
 #include <vector>
 
 #include "raster/frame.h"
+#include "tests/support/gbuffer_bytes.h"
 #include "tests/support/scenes.h"
 
 namespace softmol::raster {
 namespace {
 
-std::vector<uint8_t> Bytes(const GBuffer& g) {
-  std::vector<uint8_t> b;
-  auto add = [&](const auto& v) {
-    const size_t n = v.size() * sizeof(v[0]);
-    const size_t o = b.size();
-    b.resize(o + n);
-    if (n) std::memcpy(b.data() + o, v.data(), n);
-  };
-  add(g.depth), add(g.normalX), add(g.normalY), add(g.normalZ), add(g.baseColor);
-  add(g.primitiveId), add(g.surfaceU), add(g.surfaceV), add(g.surfaceW);
-  add(g.line), add(g.capped);
-  return b;
-}
+std::vector<uint8_t> Bytes(const GBuffer& g) { return test::GBufferBytes(g); }
 
 // Edge cueing (Tarini et al. §5.1, §5.3) on or off: depth-aware contour lines a few pixels
 // wide and a near clip plane through the front of the scene.

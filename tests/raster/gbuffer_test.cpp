@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "raster/frame.h"
+#include "tests/support/gbuffer_bytes.h"
 #include "tests/support/scenes.h"
 
 namespace softmol::raster {
@@ -43,16 +44,7 @@ TEST(GBuffer, TheRasterizerWritesEverySampleOfEveryPlane) {
   std::fill(reused.baseColor.begin(), reused.baseColor.end(), 0xDEADBEEFu);
   std::fill(reused.primitiveId.begin(), reused.primitiveId.end(), 0xDEADBEEFu);
   RenderGBuffer(s.scene, s.camera, opt, reused);  // same size: no Resize, the copy-out alone
-  auto same = [](const auto& a, const auto& b) {
-    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0;
-  };
-  EXPECT_TRUE(same(fresh.depth, reused.depth));
-  EXPECT_TRUE(same(fresh.normalX, reused.normalX) && same(fresh.normalY, reused.normalY) &&
-              same(fresh.normalZ, reused.normalZ));
-  EXPECT_TRUE(same(fresh.baseColor, reused.baseColor) && same(fresh.primitiveId, reused.primitiveId));
-  EXPECT_TRUE(same(fresh.surfaceU, reused.surfaceU) && same(fresh.surfaceV, reused.surfaceV) &&
-              same(fresh.surfaceW, reused.surfaceW));
-  EXPECT_TRUE(same(fresh.line, reused.line) && same(fresh.capped, reused.capped));
+  EXPECT_EQ(test::GBufferBytes(fresh), test::GBufferBytes(reused));
 }
 
 }  // namespace
