@@ -101,8 +101,8 @@ ConeConstants MakeConeConstants(const OccupancyPyramid& pyramid, const raster::C
   }
   k.ortho = camera.orthographic;
   k.pixelScale = float(raster::PixelScale(camera));
-  k.halfWidth = float(0.5 * camera.width);
-  k.halfHeight = float(0.5 * camera.height);
+  k.halfWidth = float(raster::HalfWidth(camera));
+  k.halfHeight = float(raster::HalfHeight(camera));
   k.width = width;
   return k;
 }

@@ -203,6 +203,8 @@ ReferenceAoConstants MakeReferenceAoConstants(const raster::Camera& camera, cons
   k.ortho = camera.orthographic;
   k.seed = FoldSeed(options.seed);
   k.rays = std::max(options.rays, 1);
+  k.windowX = camera.windowX, k.windowY = camera.windowY;
+  k.frameWidth = raster::FrameWidth(camera), k.frameHeight = raster::FrameHeight(camera);
   return k;
 }
 
@@ -218,8 +220,11 @@ bool SampleSurface(const detail::ReferenceAoConstants& k, const raster::GBuffer&
   if (!std::isfinite(depth) || !(depth > 0.0f)) return false;
   if (!gbuffer.primitiveId.empty() && gbuffer.primitiveId[i] == raster::kNoPrimitive) return false;
   const RefVec n{gbuffer.normalX[i], gbuffer.normalY[i], gbuffer.normalZ[i]};
-  s = shared::RefPixelSurface(shared::RefPixelRay(x, gbuffer.width, k.scale),
-                              shared::RefPixelRay(y, gbuffer.height, k.scale), depth, k.ortho, n, k.rot, k.move);
+  const int frameWidth = k.frameWidth > 0 ? k.frameWidth : gbuffer.width;
+  const int frameHeight = k.frameHeight > 0 ? k.frameHeight : gbuffer.height;
+  s = shared::RefPixelSurface(shared::RefPixelRay(x + k.windowX, frameWidth, k.scale),
+                              shared::RefPixelRay(y + k.windowY, frameHeight, k.scale), depth, k.ortho, n, k.rot,
+                              k.move);
   const dvec3 p(s.p.x, s.p.y, s.p.z), nw(s.n.x, s.n.y, s.n.z);
   return Finite(p) && Finite(nw);
 }
@@ -250,7 +255,10 @@ std::vector<float> ReferenceAo(const raster::PrimitiveScene& scene, const raster
         const size_t i = gbuffer.Index(x, y);
         const uint32_t id = haveIds ? gbuffer.primitiveId[i] : raster::kNoPrimitive;
         const RefVec origin = shared::RefAxpy(s.p, k.offset, s.n);
-        const uint32_t key = shared::RefPixelKey(k.seed, uint32_t(i));
+        // The frame's pixel index (the G-buffer's own when it is the whole frame).
+        const size_t frameIndex = size_t(y + k.windowY) * size_t(k.frameWidth > 0 ? k.frameWidth : w) +
+                                  size_t(x + k.windowX);
+        const uint32_t key = shared::RefPixelKey(k.seed, uint32_t(frameIndex));
         ao[i] = shared::RefAccessibility(OpenRays(occ.Data(), origin, s.n, k.rays, key, id), k.rays);
       }
   });

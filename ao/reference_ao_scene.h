@@ -33,6 +33,9 @@ struct ReferenceAoConstants {
   bool ortho = false;
   uint32_t seed = 0;
   int rays = 1;
+  // Where the G-buffer lies in its frame (raster/camera.h windows): rays and per-pixel seeds
+  // are the frame's, so a frame rendered band by band gets the same rays.
+  int windowX = 0, windowY = 0, frameWidth = 0, frameHeight = 0;
 };
 ReferenceAoConstants MakeReferenceAoConstants(const raster::Camera& camera, const ReferenceAoOptions& options);
 

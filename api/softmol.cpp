@@ -56,6 +56,7 @@ constexpr std::pair<const char*, const char*> kJobOptions[] = {
     {"shard", "a job option of the command"},
     {"profile", "a job option of the command (see Renderer::LastPasses)"},
     {"repeat", "a job option of the command"},
+    {"band-rows", "a job option of the command (the library renders whole images)"},
     {"list-presets", "a job option of the command"},
     {"print-view", "a job option of the command"},
 };
@@ -326,6 +327,7 @@ void Renderer::Impl::Prepare(const Molecule::Impl& m, const Options& options) {
   if (!plan || key != optionsKey) {
     scene.reset(), plan.reset();
     args = ParseOptions(options);
+    args.toFiles = false;  // in memory: whole images only
     plan = cli::PlanRun(args);
     optionsKey = key;
   }

@@ -68,6 +68,8 @@ struct RenderArgs {
   int threads = 0;
   int repeat = 1;
   bool quiet = false;
+  int bandRows = 0;         // --band-rows: 0 = automatic (effects/bands.h)
+  bool toFiles = true;      // the frames go to files (the library renders in memory: never in bands)
   BakeFlags bake;                  // --ao baked: --ao-directions, ... (cli/bake_options.h)
   effects::RenderOptions options = [] {  // every pass's options; AO chosen per structure
     effects::RenderOptions o;

@@ -10,7 +10,10 @@
 #include <stdexcept>
 #include <utility>
 
+#include "effects/bands.h"
+#include "io/atomic_file.h"
 #include "io/image_io.h"
+#include "io/png_encoder.h"
 #if SOFTMOL_HAVE_GL
 #include "gl/context_egl.h"
 #include "gl/frame_renderer.h"
@@ -159,6 +162,44 @@ void FrameSink::FinishWrites() {
   writer_.join();
   if (tracing_) trace_.AddComplete("write", "output", writeStartMs_, writeMs_, ProfileTrace::kWriterTrack);
   if (writeError_) std::rethrow_exception(std::exchange(writeError_, nullptr));
+}
+
+void FrameSink::RenderBands(const raster::PrimitiveScene& scene, const raster::Camera& camera,
+                            const effects::RenderOptions& options, effects::FrameResources& resources,
+                            const std::string& path, int bandRows) {
+  FinishWrites();
+  cursorMs_ = std::max(cursorMs_, MsSince(start_));
+  io::TemporaryFile file(path);  // first, so a bad output path is reported before any band renders
+  io::PngStreamEncoder png(camera.width, camera.height, options.transparent ? 4 : 3);
+  std::vector<uint8_t> bytes;
+  png.Header(bytes);
+  // The frame's summary: every band runs the same plan, so pass i is the same pass in each.
+  effects::RenderedFrame& sum = frame_;
+  sum = {};
+  sum.width = camera.width, sum.height = camera.height;
+  effects::RenderBands(scene, camera, options, bandRows, [&](const effects::RenderedFrame& band, const effects::FrameBand&) {
+    if (tracing_) trace_.AddFrame(rendered_, cursorMs_, band);
+    cursorMs_ += band.totalMs;
+    const Clock::time_point w0 = Clock::now();
+    const std::vector<uint8_t> pixels = effects::EncodeSrgb8(band, options.transparent);
+    png.AddRows(pixels.data(), size_t(band.height), bytes);
+    file.Write(bytes.data(), bytes.size());
+    bytes.clear();
+    const double ms = MsSince(w0);
+    if (tracing_) trace_.AddComplete("write band", "output", cursorMs_, ms);
+    cursorMs_ += ms;
+    if (sum.passes.empty()) sum.passes = band.passes;
+    else
+      for (size_t i = 0; i < sum.passes.size() && i < band.passes.size(); ++i)
+        sum.passes[i].durationMs += band.passes[i].durationMs;
+    sum.totalMs += band.totalMs;
+  }, &resources);
+  png.Finish(bytes);
+  file.Write(bytes.data(), bytes.size());
+  file.Commit();
+  ++rendered_;
+  bestMs_ = std::min(bestMs_, sum.totalMs);
+  sumMs_ += sum.totalMs;
 }
 
 void FrameSink::AddSteps(const std::vector<StepTime>& steps) {

@@ -47,8 +47,8 @@ ImageSize ParseSize(const std::string& text, const std::string& option) {
   if (!ParseInt(text.substr(0, x), s.width) || (!widthOnly && !ParseInt(text.substr(x + 1), s.height)))
     throw io::InputError({option}, "expected WIDTHxHEIGHT or WIDTH, e.g. 1920x1080 or 1280, got '" + text + "'");
   if (widthOnly) s.height = int((int64_t(s.width) * 3 + 2) / 4);  // the default 4:3, rounded
-  if (s.width < 1 || s.height < 1 || s.width > 16384 || s.height > 16384)
-    throw io::InputError({option}, "each side must be 1 to 16384 pixels, got '" + text + "'");
+  if (s.width < 1 || s.height < 1 || s.width > 32768 || s.height > 32768)
+    throw io::InputError({option}, "each side must be 1 to 32768 pixels, got '" + text + "'");
   return s;
 }
 

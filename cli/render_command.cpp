@@ -26,6 +26,7 @@
 #include "cli/render_jobs.h"
 #include "cli/render_steps.h"
 #include "common/timer.h"
+#include "effects/bands.h"
 #include "effects/color.h"
 #include "effects/frame_renderer.h"
 #include "effects/pass_list.h"
@@ -172,6 +173,9 @@ io::ParamTable<RenderArgs> JobParams() {
                            "Worker threads (0: all cores)", "job"),
       IntParam<RenderArgs>("repeat", [](auto& a) -> auto& { return a.repeat; }, 1, 100000, "",
                            "Render the frame N times (steady-state timings)", "job"),
+      IntParam<RenderArgs>("band-rows", [](auto& a) -> auto& { return a.bandRows; }, 0, 32768, "",
+                           "Render the image in bands of N rows streamed to the PNG, in bounded memory (the same "
+                           "bytes); 0: bands only for images above 2^25 samples (size x ssaa^2)", "output"),
       TextParam<RenderArgs>("shard", [](auto& a) -> auto& { return a.shard; }, "I/N",
                             "Render only every N-th image of the run (frames of all inputs in order), starting at "
                             "I (0-based), with the run's own names: N shards write exactly the files of one run",
@@ -347,6 +351,34 @@ raster::Camera FrameCamera(const RenderArgs& a, const std::optional<scene::View>
   return cam;
 }
 
+// A frame renders in one pass of at most 2^28 samples, or in bands (posters) streamed to a
+// PNG by the CPU backend, each band a window at most 32768 samples wide (raster/frame.h).
+void CheckFrameSize(const RenderArgs& a, const RunPlan& p) {
+  const effects::RenderOptions& ro = p.options;
+  const int64_t perRow = int64_t(p.size.width) * ro.ssaa * ro.ssaa;
+  const io::SourceLocation why{a.bandRows > 0 ? "--band-rows" : "--size"};
+  if (p.bandRows == 0) {
+    if (perRow * p.size.height > (int64_t(1) << 28))
+      throw io::InputError({"--ssaa"}, "size × ssaa² is more than 2^28 samples (larger images render in bands, "
+                                       "to a PNG without AOVs)");
+    return;
+  }
+  if (p.kind != OutputKind::kPng)
+    throw io::InputError(why, "an image rendered in bands is streamed to a PNG; EXR output needs the whole image "
+                              "at once (write .png, or a smaller --size)");
+  if (ro.aovs != 0)
+    throw io::InputError({"--aov"}, "AOVs are written as EXR, which needs the whole image at once; an image "
+                                    "rendered in bands (see --band-rows) has none");
+  if (a.backend == "gl")
+    throw io::InputError({"--backend"}, "the GL mirror renders whole images; an image rendered in bands (see "
+                                        "--band-rows) is the CPU backend's");
+  if (int64_t(p.size.width) * ro.ssaa > 32768)
+    throw io::InputError({"--ssaa"}, "width × ssaa is more than 32768 samples");
+  if (perRow * p.bandRows > (int64_t(1) << 28))
+    throw io::InputError({"--band-rows"}, "a band of " + std::to_string(p.bandRows) +
+                                              " rows is more than 2^28 samples (size × ssaa²)");
+}
+
 // The checks that need several options together, before anything loads.
 void CheckCombinations(const RenderArgs& a, const RunPlan& p) {
   const effects::RenderOptions& ro = p.options;
@@ -365,8 +397,7 @@ void CheckCombinations(const RenderArgs& a, const RunPlan& p) {
     throw io::InputError({"--highlight-trail"}, "--highlight-trail needs --highlight SELECTION");
   if (ro.highlight.trail > 0 && p.shard.count > 1)
     throw io::InputError({"--shard"}, "a --highlight-trail frame depends on every frame before it, so shards cannot split it");
-  if (int64_t(p.size.width) * p.size.height * ro.ssaa * ro.ssaa > (int64_t(1) << 28))
-    throw io::InputError({"--ssaa"}, "size × ssaa² is more than 2^28 samples");
+  CheckFrameSize(a, p);
 }
 
 }  // namespace
@@ -389,6 +420,13 @@ RunPlan PlanRun(const RenderArgs& a) {
   if (!a.turntable.empty()) p.turntable = ParseTurntable(a.turntable, {"--turntable"});
   if (!a.shard.empty()) p.shard = ParseShard(a.shard, {"--shard"});
   if (p.turntable.frames > 0) p.framesPerInput = p.turntable.frames;
+  // Bands when asked for, or by default where the output can take them (a PNG without AOVs,
+  // from the CPU backend); CheckFrameSize says what a banded image cannot have.
+  const bool bandable = a.toFiles && p.kind == OutputKind::kPng && p.options.aovs == 0 && a.backend == "cpu";
+  const int rows = a.bandRows > 0 ? a.bandRows
+                   : bandable     ? effects::AutomaticBandRows(p.options, p.size.width, p.size.height)
+                                  : p.size.height;
+  if (rows < p.size.height) p.bandRows = rows;
   CheckCombinations(a, p);
   if (!a.highlight.empty()) p.highlight = io::ParseSelection(a.highlight, {"--highlight"});
   if (!a.view.empty()) p.view = scene::ParseView(a.view, {"--view"});
@@ -436,11 +474,24 @@ std::vector<size_t> InputFrames(const RenderArgs& a, const RunPlan& plan, const 
   return frames;
 }
 
+// One image to `path`: rendered whole (`repeat` times), then written (behind the next frame,
+// in a sequence); or, for a poster, rendered band by band into its PNG stream.
+void RenderImage(const RunPlan& plan, const raster::PrimitiveScene& scene, const raster::Camera& cam,
+                 const effects::RenderOptions& options, effects::FrameResources& resources, FrameSink& sink,
+                 const std::string& path, bool behind, int repeat = 1) {
+  if (plan.bandRows > 0) {
+    for (int r = 0; r < repeat; ++r) sink.RenderBands(scene, cam, options, resources, path, plan.bandRows);
+    return;
+  }
+  for (int r = 0; r < repeat; ++r) sink.Render(scene, cam, options, resources);
+  sink.Write(path, plan.kind, options, behind);
+}
+
 // Trajectory frame k: the camera stays where the topology framed it, so the molecule moves in
 // a fixed view; only near/far follow each frame (unless given). Bonds come from the topology.
 void RenderTrajectoryFrame(const RenderArgs& a, const RunPlan& plan, InputScene& s, io::TrajectoryReader& trajectory,
                            const std::vector<size_t>& frames, size_t k, effects::FrameResources& resources,
-                           FrameSink& sink) {
+                           FrameSink& sink, const std::string& path, bool behind) {
   io::TrajectoryFrame coordinates;
   trajectory.Seek(frames[k]);
   if (!trajectory.Next(coordinates))
@@ -455,17 +506,17 @@ void RenderTrajectoryFrame(const RenderArgs& a, const RunPlan& plan, InputScene&
     const double stepPs = trajectory.Info().timeStepPs > 0 ? trajectory.Info().timeStepPs : 1.0;
     s.options.highlight.frameDelta = k == 0 ? 0.0 : stepPs * double(frames[k] - frames[k - 1]);
   }
-  sink.Render(moving, view, s.options, resources);
+  RenderImage(plan, moving, view, s.options, resources, sink, path, behind);
 }
 
 // A still (--repeat times), or turntable frame k: the camera turns, the atoms do not, so the
 // AO bake and the occupancy pyramid are reused from frame to frame.
 void RenderStillFrame(const RenderArgs& a, const RunPlan& plan, const InputScene& s, size_t k,
-                      effects::FrameResources& resources, FrameSink& sink) {
+                      effects::FrameResources& resources, FrameSink& sink, const std::string& path, bool behind) {
   const raster::Camera cam =
       k == 0 ? s.camera
              : FrameCamera(a, plan.view, s.drawn.scene, s.framing, plan.size, TurntableDegrees(plan.turntable, k));
-  for (int r = 0; r < a.repeat; ++r) sink.Render(s.drawn.scene, cam, s.options, resources);
+  RenderImage(plan, s.drawn.scene, cam, s.options, resources, sink, path, behind, a.repeat);
 }
 
 // "md.pdb: 17411 atoms, ... -> md_%05d.png (96x72, 3 trajectory frames) in 123.4 ms".
@@ -498,11 +549,10 @@ void RenderInput(const RenderArgs& a, const RunPlan& plan, const std::string& in
   size_t taken = 0;
   for (size_t k = 0; k < frames.size(); ++k) {
     if (!plan.shard.Takes(firstJob + k)) continue;
-    if (trajectory) RenderTrajectoryFrame(a, plan, s, *trajectory, frames, k, resources, sink);
-    else RenderStillFrame(a, plan, s, k, resources, sink);
-    // A sequence's frame is written while the next one renders.
-    sink.Write(FrameOutputName(pattern, a.numberByFrame ? frames[k] : k), plan.kind, s.options,
-               /*behind=*/frames.size() > 1);
+    const std::string path = FrameOutputName(pattern, a.numberByFrame ? frames[k] : k);
+    const bool behind = frames.size() > 1;  // a sequence's frame is written while the next one renders
+    if (trajectory) RenderTrajectoryFrame(a, plan, s, *trajectory, frames, k, resources, sink, path, behind);
+    else RenderStillFrame(a, plan, s, k, resources, sink, path, behind);
     ++taken;
     if (progress) std::fprintf(stderr, "\rframe %zu (%zu of %zu)   ", frames[k], k + 1, frames.size());
   }

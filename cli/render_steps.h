@@ -32,6 +32,9 @@ struct RunPlan {
   Turntable turntable;
   Shard shard;
   size_t framesPerInput = 1;  // without a trajectory: one still, or the turntable's frames
+  // > 0: each image is rendered in bands of this many rows, streamed to its PNG (posters,
+  // effects/bands.h); 0: in one pass.
+  int bandRows = 0;
 };
 // Every option was checked as it was parsed; what remains needs several of them together.
 // Throws io::InputError naming the option.

@@ -61,9 +61,7 @@ void RenderFrame(const raster::PrimitiveScene& scene, const raster::Camera& came
   const std::vector<PlannedPass> plan = PlanPasses(o);
 
   // Samples are taken at ssaa× the output resolution.
-  raster::Camera cam = camera;
-  cam.width = camera.width * o.ssaa;
-  cam.height = camera.height * o.ssaa;
+  const raster::Camera cam = raster::Supersampled(camera, o.ssaa);
   FrameResources local;
   FrameResources& res = resources ? *resources : local;
   res.ao.clear();

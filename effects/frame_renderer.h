@@ -115,7 +115,11 @@ struct FrameResources {
   raster::PrimitiveScene haloScene;
   ao::OccupancyPyramid haloPyramid;
   HaloVolume haloVolume;
+  bool haloReady = false;
   std::vector<float> halo;
+  // Set by RenderBands (effects/bands.h) for a frame's bands after the first: the scene and the
+  // view are the last band's, so the scene-wide maps (shadow map, halo volume) are kept.
+  bool sameView = false;
 };
 
 // What `--ao auto` (the CLI's default) becomes for a structure of `primitives` drawn

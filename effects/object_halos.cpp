@@ -245,8 +245,8 @@ HaloConstants MakeHaloConstants(const HaloVolume& vol, const raster::Camera& cam
   }
   k.ortho = camera.orthographic;
   k.pixelScale = float(raster::PixelScale(camera));
-  k.halfWidth = float(0.5 * camera.width);
-  k.halfHeight = float(0.5 * camera.height);
+  k.halfWidth = float(raster::HalfWidth(camera));
+  k.halfHeight = float(raster::HalfHeight(camera));
   k.width = width;
   k.data = vol.value.data();
   k.res = vol.resolution;

@@ -86,6 +86,11 @@ struct PassUnit {
   // True when the pass reads only the samples of the pixel it writes (no neighbours, no other
   // pixel's result): such passes may run fused per tile.
   bool perSample;
+  // Rows of samples beyond its own the pass reads above and below a sample (Sobel's 3×3: 1):
+  // what a band of a frame rendered in bands (effects/bands.h) renders past its edges so that
+  // its rows come out as the whole frame's. 0 for passes that read only the pixel's own
+  // samples or scene-wide data (maps, volumes, the primitives).
+  int bandBorder;
   bool (*wanted)(const RenderOptions&);       // its effect is switched on
   uint64_t (*reads)(const RenderOptions&);    // FrameBuffer bits
   uint64_t writes;                            // FrameBuffer bits (the G-buffer's are pruned)

@@ -120,8 +120,8 @@ ShadowConstants MakeShadowConstants(const ShadowMap& map, const raster::Camera& 
   k.lightX = float(l.x), k.lightY = float(l.y), k.lightZ = float(l.z);
   k.ortho = eyeCamera.orthographic;
   k.pixelScale = float(raster::PixelScale(eyeCamera));
-  k.halfWidth = float(0.5 * eyeCamera.width);
-  k.halfHeight = float(0.5 * eyeCamera.height);
+  k.halfWidth = float(raster::HalfWidth(eyeCamera));
+  k.halfHeight = float(raster::HalfHeight(eyeCamera));
   k.width = width;
   k.map = map.map.depth.data();
   k.mapSize = map.map.width;

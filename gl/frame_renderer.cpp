@@ -246,11 +246,11 @@ GlFrameStats FrameRenderer::RenderFrame(const raster::PrimitiveScene& scene,
                                         const effects::RenderOptions& o,
                                         effects::RenderedFrame& f, raster::GBuffer* samples) {
   SOFTMOL_CHECK(o.ssaa >= 1 && o.ssaa <= 4);
+  // The mirror's viewport is the whole frame: windows (poster bands) are the CPU backend's.
+  SOFTMOL_CHECK(!raster::IsWindow(camera));
   const std::vector<effects::PlannedPass> plan = effects::PlanPasses(o);
   const auto t0 = Clock::now();
-  raster::Camera cam = camera;
-  cam.width = camera.width * o.ssaa;
-  cam.height = camera.height * o.ssaa;
+  const raster::Camera cam = raster::Supersampled(camera, o.ssaa);
   f.passes.clear();
   impl_->ao.clear();  // no AO pass this frame: the AOV and the shading see none
   impl_->objectHalo.clear();

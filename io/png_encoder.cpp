@@ -114,25 +114,40 @@ struct Scratch {
 };
 thread_local Scratch t_scratch;
 
+// The rows an encoder can see: those it held back from earlier calls, [heldFirst, heldEnd),
+// then the caller's new ones from heldEnd on.
+struct RowSource {
+  const uint8_t* held;
+  size_t heldFirst, heldEnd;
+  const uint8_t* fresh;
+  size_t rowBytes;
+  const uint8_t* Row(size_t y) const {
+    return y < heldEnd ? held + (y - heldFirst) * rowBytes : fresh + (y - heldEnd) * rowBytes;
+  }
+};
+
 // Filters rows [y0, y1) into `out` (stride bytes a row).
-void FilterRows(const uint8_t* pixels, size_t rowBytes, size_t bpp, PngFilter f, size_t y0, size_t y1,
-                const uint8_t* zeros, uint8_t* out, std::vector<uint8_t>& row) {
+void FilterRows(const RowSource& src, size_t bpp, PngFilter f, size_t y0, size_t y1, const uint8_t* zeros,
+                uint8_t* out, std::vector<uint8_t>& row) {
   for (size_t y = y0; y < y1; ++y) {
-    const uint8_t* up = y == 0 ? zeros : pixels + (y - 1) * rowBytes;
-    FilterRow(f, pixels + y * rowBytes, up, rowBytes, bpp, out + (y - y0) * (rowBytes + 1), row);
+    const uint8_t* up = y == 0 ? zeros : src.Row(y - 1);
+    FilterRow(f, src.Row(y), up, src.rowBytes, bpp, out + (y - y0) * (src.rowBytes + 1), row);
   }
 }
+
+// Rows of the 32 KiB window before a chunk (at most y0 of them).
+size_t DictionaryRows(size_t y0, size_t stride) { return std::min(y0, (size_t(32768) + stride - 1) / stride); }
 
 // Chunk k: filters rows [y0, y1) with the rows before them that fill the 32 KiB window, primes
 // deflate with that window (what an inflater holds at this point of the joined stream), and
 // raw-deflates the chunk's own rows.
-Piece DeflateChunk(const uint8_t* pixels, size_t rowBytes, size_t bpp, size_t y0, size_t y1, bool last,
-                   const uint8_t* zeros, const PngEncodeOptions& o) {
+Piece DeflateChunk(const RowSource& src, size_t bpp, size_t y0, size_t y1, bool last, const uint8_t* zeros,
+                   const PngEncodeOptions& o) {
   Scratch& s = t_scratch;
-  const size_t stride = rowBytes + 1;
-  const size_t dictRows = std::min(y0, (size_t(32768) + stride - 1) / stride);
+  const size_t stride = src.rowBytes + 1;
+  const size_t dictRows = DictionaryRows(y0, stride);
   s.filtered.resize((dictRows + y1 - y0) * stride);
-  FilterRows(pixels, rowBytes, bpp, o.filter, y0 - dictRows, y1, zeros, s.filtered.data(), s.row);
+  FilterRows(src, bpp, o.filter, y0 - dictRows, y1, zeros, s.filtered.data(), s.row);
   const uint8_t* own = s.filtered.data() + dictRows * stride;
   const size_t n = (y1 - y0) * stride;
 
@@ -207,55 +222,86 @@ std::array<uint8_t, 2> ZlibHeader(int level) {
   return {0x78, 0xda};
 }
 
-// One IDAT per piece; the first carries the zlib header, the last the stream's adler32.
-void PutIdats(std::vector<uint8_t>& out, const std::vector<Piece>& pieces, int level, uLong adler) {
+// Piece k's IDAT: the first carries the zlib header, the last the stream's adler32.
+void PutIdat(std::vector<uint8_t>& out, const Piece& p, bool first, bool last, int level, uLong adler) {
   const std::array<uint8_t, 2> hdr = ZlibHeader(level);
   const uint8_t tail[4] = {uint8_t(adler >> 24), uint8_t(adler >> 16), uint8_t(adler >> 8), uint8_t(adler)};
-  for (size_t k = 0; k < pieces.size(); ++k) {
-    const bool first = k == 0, last = k + 1 == pieces.size();
-    const Piece& p = pieces[k];
-    PutBe32(out, uint32_t(p.data.size() + (first ? 2 : 0) + (last ? 4 : 0)));
-    const size_t at = out.size();
-    Put(out, "IDAT", 4);
-    if (first) Put(out, hdr.data(), 2);
-    uLong crc = crc32(0, out.data() + at, uInt(out.size() - at));
-    crc = crc32_combine(crc, p.crc, z_off_t(p.data.size()));
-    Put(out, p.data.data(), p.data.size());
-    if (last) {
-      Put(out, tail, 4);
-      crc = crc32(crc, tail, 4);
-    }
-    PutBe32(out, uint32_t(crc));
+  PutBe32(out, uint32_t(p.data.size() + (first ? 2 : 0) + (last ? 4 : 0)));
+  const size_t at = out.size();
+  Put(out, "IDAT", 4);
+  if (first) Put(out, hdr.data(), 2);
+  uLong crc = crc32(0, out.data() + at, uInt(out.size() - at));
+  crc = crc32_combine(crc, p.crc, z_off_t(p.data.size()));
+  Put(out, p.data.data(), p.data.size());
+  if (last) {
+    Put(out, tail, 4);
+    crc = crc32(crc, tail, 4);
   }
+  PutBe32(out, uint32_t(crc));
 }
 
 }  // namespace
 
+PngStreamEncoder::PngStreamEncoder(int width, int height, int channels, const PngEncodeOptions& options)
+    : width_(width), height_(height), channels_(channels), options_(options) {
+  if (width <= 0 || height <= 0 || (channels != 3 && channels != 4))
+    throw std::invalid_argument("internal error: bad PNG size or channel count");
+  rowBytes_ = size_t(width) * size_t(channels);
+  rowsPerChunk_ = std::max<size_t>(1, options.chunkBytes / (rowBytes_ + 1));
+  chunks_ = (size_t(height) + rowsPerChunk_ - 1) / rowsPerChunk_;
+  zeros_.assign(rowBytes_, 0);
+}
+
+void PngStreamEncoder::Header(std::vector<uint8_t>& out) const { PutHeader(out, width_, height_, channels_); }
+
+void PngStreamEncoder::AddRows(const uint8_t* pixels, size_t rows, std::vector<uint8_t>& out) {
+  const size_t h = size_t(height_), stride = rowBytes_ + 1;
+  if (rows > h - given_) throw std::invalid_argument("internal error: more PNG rows than the image has");
+  const size_t end = given_ + rows;
+  const RowSource src{held_.data(), heldFirst_, given_, pixels, rowBytes_};
+  // The chunks these rows complete, deflated in parallel.
+  const size_t firstChunk = done_;
+  size_t lastChunk = firstChunk;
+  while (lastChunk < chunks_ && std::min(h, (lastChunk + 1) * rowsPerChunk_) <= end) ++lastChunk;
+  std::vector<Piece> pieces(lastChunk - firstChunk);
+  tbb::parallel_for(firstChunk, lastChunk, [&](size_t k) {
+    const size_t y0 = k * rowsPerChunk_, y1 = std::min(h, y0 + rowsPerChunk_);
+    pieces[k - firstChunk] = DeflateChunk(src, size_t(channels_), y0, y1, k + 1 == chunks_, zeros_.data(), options_);
+  });
+  const int level = std::clamp(options_.level, 0, 9);
+  for (size_t k = firstChunk; k < lastChunk; ++k) {
+    const Piece& p = pieces[k - firstChunk];
+    const size_t chunkRows = std::min(h, (k + 1) * rowsPerChunk_) - k * rowsPerChunk_;
+    adler_ = k == 0 ? p.adler : adler32_combine(adler_, p.adler, z_off_t(chunkRows * stride));
+    PutIdat(out, p, k == 0, k + 1 == chunks_, level, adler_);
+  }
+  done_ = lastChunk;
+  // Hold back what later chunks read: their own rows not yet deflated, the window before the
+  // next one and the row above that (its Up filter).
+  const size_t next = done_ * rowsPerChunk_, window = next - DictionaryRows(next, stride);
+  const size_t keepFrom = done_ == chunks_ ? end : std::min(end, window > 0 ? window - 1 : 0);
+  std::vector<uint8_t> kept((end - keepFrom) * rowBytes_);
+  for (size_t y = keepFrom; y < end; ++y) std::memcpy(kept.data() + (y - keepFrom) * rowBytes_, src.Row(y), rowBytes_);
+  held_.swap(kept);
+  heldFirst_ = keepFrom;
+  given_ = end;
+}
+
+void PngStreamEncoder::Finish(std::vector<uint8_t>& out) {
+  if (given_ != size_t(height_) || done_ != chunks_)
+    throw std::invalid_argument("internal error: the PNG stream ended before its last row");
+  PutChunk(out, "IEND", nullptr, 0);
+}
+
 std::vector<uint8_t> EncodePng(int width, int height, int channels, const uint8_t* pixels,
                                const PngEncodeOptions& o) {
-  const size_t bpp = size_t(channels), rowBytes = size_t(width) * bpp, stride = rowBytes + 1;
-  const size_t h = size_t(height);
-  const std::vector<uint8_t> zeros(rowBytes, 0);
-  const size_t rowsPerChunk = std::max<size_t>(1, o.chunkBytes / stride);
-  const size_t chunks = (h + rowsPerChunk - 1) / rowsPerChunk;
-  std::vector<Piece> pieces(chunks);
-  tbb::parallel_for(size_t(0), chunks, [&](size_t k) {
-    const size_t y0 = k * rowsPerChunk, y1 = std::min(h, y0 + rowsPerChunk);
-    pieces[k] = DeflateChunk(pixels, rowBytes, bpp, y0, y1, k + 1 == chunks, zeros.data(), o);
-  });
-  uLong adler = pieces[0].adler;
-  for (size_t k = 1; k < chunks; ++k) {
-    const size_t rows = std::min(h, (k + 1) * rowsPerChunk) - k * rowsPerChunk;
-    adler = adler32_combine(adler, pieces[k].adler, z_off_t(rows * stride));
-  }
-
+  PngStreamEncoder encoder(width, height, channels, o);
   std::vector<uint8_t> out;
-  size_t total = 128;
-  for (const Piece& p : pieces) total += p.data.size() + 12;
-  out.reserve(total);
-  PutHeader(out, width, height, channels);
-  PutIdats(out, pieces, std::clamp(o.level, 0, 9), adler);
-  PutChunk(out, "IEND", nullptr, 0);
+  // Raw size / 8 is more than this encoder's level-1 output of a rendered frame needs.
+  out.reserve(256 + size_t(width) * size_t(height) * size_t(channels) / 8);
+  encoder.Header(out);
+  encoder.AddRows(pixels, size_t(height), out);
+  encoder.Finish(out);
   return out;
 }
 

@@ -170,7 +170,7 @@ void FitNearFar(Camera& cam, const PrimitiveScene& scene) {
 glm::dmat4 ViewMatrix(const Camera& cam) { return glm::lookAt(cam.eye, cam.target, cam.up); }
 
 glm::dmat4 ProjectionMatrix(const Camera& cam) {
-  const double aspect = double(cam.width) / double(std::max(cam.height, 1));
+  const double aspect = double(FrameWidth(cam)) / double(std::max(FrameHeight(cam), 1));
   if (cam.orthographic) {
     const double h = 0.5 * cam.orthoHeight, w = h * aspect;
     return glm::ortho(-w, w, -h, h, cam.nearPlane, cam.farPlane);
@@ -179,9 +179,26 @@ glm::dmat4 ProjectionMatrix(const Camera& cam) {
 }
 
 double PixelScale(const Camera& cam) {
-  const double h = double(std::max(cam.height, 1));
+  const double h = double(std::max(FrameHeight(cam), 1));
   if (cam.orthographic) return cam.orthoHeight / h;
   return 2.0 * std::tan(0.5 * cam.fovYDegrees * kDeg) / h;
+}
+
+Camera RowWindow(const Camera& frame, int y0, int rows) {
+  Camera c = frame;
+  c.frameWidth = FrameWidth(frame), c.frameHeight = FrameHeight(frame);
+  c.windowX = frame.windowX;
+  c.windowY = frame.windowY + y0;
+  c.height = rows;
+  return c;
+}
+
+Camera Supersampled(const Camera& camera, int samples) {
+  Camera c = camera;
+  c.width = camera.width * samples, c.height = camera.height * samples;
+  c.windowX = camera.windowX * samples, c.windowY = camera.windowY * samples;
+  c.frameWidth = camera.frameWidth * samples, c.frameHeight = camera.frameHeight * samples;
+  return c;
 }
 
 }  // namespace softmol::raster

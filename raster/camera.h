@@ -16,8 +16,33 @@ struct Camera {
   bool orthographic = false;
   double orthoHeight = 0.0;                // view height in Å (orthographic only)
   double nearPlane = 0.0, farPlane = 0.0;  // eye-space distances along −Z; 0 = fitted
-  int width = 0, height = 0;               // pixels
+  int width = 0, height = 0;               // pixels rendered (the window's, see below)
+  // A window into a larger frame (one band of a poster): the frame is frameWidth × frameHeight
+  // pixels, projected as a camera of that size would project it, and this camera renders the
+  // width × height of them whose lower-left pixel is (windowX, windowY), y up. Every ray is the
+  // frame's own ray through that pixel, bit for bit (HalfWidth below says why), so a frame
+  // rendered window by window is the frame rendered at once. 0, 0, 0, 0: the window is the frame.
+  int windowX = 0, windowY = 0, frameWidth = 0, frameHeight = 0;
 };
+
+// The whole frame's size (the camera's own when it is not a window).
+inline int FrameWidth(const Camera& c) { return c.frameWidth > 0 ? c.frameWidth : c.width; }
+inline int FrameHeight(const Camera& c) { return c.frameHeight > 0 ? c.frameHeight : c.height; }
+inline bool IsWindow(const Camera& c) {
+  return c.windowX != 0 || c.windowY != 0 || FrameWidth(c) != c.width || FrameHeight(c) != c.height;
+}
+// The frame's centre in the window's pixel coordinates: what PixelToRay subtracts. A window's
+// pixel p is the frame's pixel p + windowX, and ((p + 0.5) − (W/2 − windowX)) is computed
+// exactly (in float too: both terms are multiples of ½ below 2²³), so it equals the frame's
+// ((p + windowX + 0.5) − W/2) to the last bit.
+inline double HalfWidth(const Camera& c) { return 0.5 * FrameWidth(c) - c.windowX; }
+inline double HalfHeight(const Camera& c) { return 0.5 * FrameHeight(c) - c.windowY; }
+
+// The rows [y0, y0 + rows) (y up) of `frame`'s frame, all its columns, as a window camera.
+Camera RowWindow(const Camera& frame, int y0, int rows);
+// The same view with `samples` × the pixels along each axis (supersampling): a window's
+// position and its frame scale with it.
+Camera Supersampled(const Camera& camera, int samples);
 
 // DESIGN.md auto-framing: 30° vertical FOV, looking along −Z at the bounding-sphere centre,
 // at the distance where the sphere fits the smaller image dimension with a 5% margin.
@@ -39,7 +64,8 @@ void ApplyZoom(Camera& camera, double factor);
 // Sets nearPlane/farPlane to enclose the scene's bounding sphere (kept ≥ 1e-4 × far).
 void FitNearFar(Camera& camera, const PrimitiveScene& scene);
 
-// OpenGL matrices (gluLookAt / gluPerspective / glOrtho) for the GL mirror and for tests.
+// OpenGL matrices (gluLookAt / gluPerspective / glOrtho) for the GL mirror and for tests; a
+// window's projection is its whole frame's.
 glm::dmat4 ViewMatrix(const Camera& camera);
 glm::dmat4 ProjectionMatrix(const Camera& camera);  // needs nearPlane, farPlane > 0
 

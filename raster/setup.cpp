@@ -84,8 +84,8 @@ ViewSetup MakeViewSetup(const Camera& camera, const PrimitiveScene& scene) {
   v.ortho = camera.orthographic;
   v.pixelScale = PixelScale(camera);
   v.invPixelScale = 1.0 / v.pixelScale;
-  v.halfWidth = 0.5 * camera.width;
-  v.halfHeight = 0.5 * camera.height;
+  v.halfWidth = HalfWidth(camera);  // a window's rays are its frame's (raster/camera.h)
+  v.halfHeight = HalfHeight(camera);
   v.nearPlane = camera.nearPlane;
   v.farPlane = camera.farPlane;
   if (!(camera.nearPlane > 0.0) || !(camera.farPlane > 0.0)) {

@@ -66,7 +66,7 @@ io::ParamTable<RenderOptions> AovParams() {
 
 }  // namespace
 
-extern const PassUnit kAovsPass = {PassId::kAovs, "aovs", "--aov", /*perSample=*/true, AovsWanted, AovReads, kBufAovs,
+extern const PassUnit kAovsPass = {PassId::kAovs, "aovs", "--aov", /*perSample=*/true, /*bandBorder=*/0, AovsWanted, AovReads, kBufAovs,
                                    RunAovs, AovParams};
 
 }  // namespace softmol::effects

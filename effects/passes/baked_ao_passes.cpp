@@ -31,9 +31,9 @@ uint64_t LookupReads(const RenderOptions&) { return kBufAoAtlas | kBufPrimitiveI
 
 }  // namespace
 
-extern const PassUnit kAoBakePass = {PassId::kAoBake, "ao bake", "--ao baked", /*perSample=*/false, Baked,
+extern const PassUnit kAoBakePass = {PassId::kAoBake, "ao bake", "--ao baked", /*perSample=*/false, /*bandBorder=*/0, Baked,
                                      BakeReads, kBufAoAtlas, RunBake, NoParams};
 extern const PassUnit kBakedAoLookupPass = {PassId::kBakedAoLookup, "baked ao lookup", "--ao baked",
-                                            /*perSample=*/true, Baked, LookupReads, kBufAo, RunLookup, NoParams};
+                                            /*perSample=*/true, /*bandBorder=*/0, Baked, LookupReads, kBufAo, RunLookup, NoParams};
 
 }  // namespace softmol::effects

@@ -41,9 +41,9 @@ io::ParamTable<RenderOptions> PyramidParams() {
 }  // namespace
 
 extern const PassUnit kOccupancyPyramidPass = {PassId::kOccupancyPyramid, "occupancy pyramid", "--ao cone",
-                                               /*perSample=*/false, Cone, PyramidReads, kBufOccupancy, RunPyramid,
+                                               /*perSample=*/false, /*bandBorder=*/0, Cone, PyramidReads, kBufOccupancy, RunPyramid,
                                                PyramidParams};
-extern const PassUnit kConeAoPass = {PassId::kConeAo, "cone ao", "--ao cone", /*perSample=*/true, Cone, ConeReads,
+extern const PassUnit kConeAoPass = {PassId::kConeAo, "cone ao", "--ao cone", /*perSample=*/true, /*bandBorder=*/0, Cone, ConeReads,
                                      kBufAo, RunCones, ConeParams};
 
 }  // namespace softmol::effects

@@ -41,7 +41,7 @@ io::ParamTable<RenderOptions> DepthHaloParams() {
 
 }  // namespace
 
-extern const PassUnit kDepthHalosPass = {PassId::kDepthHalos, "depth halos", "--halos", /*perSample=*/false,
+extern const PassUnit kDepthHalosPass = {PassId::kDepthHalos, "depth halos", "--halos", /*perSample=*/false, /*bandBorder=*/0,
                                          DepthHalos, HaloReads, kBufDepthHalo, RunDepthHalos, DepthHaloParams};
 
 }  // namespace softmol::effects

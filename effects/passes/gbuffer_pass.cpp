@@ -42,7 +42,7 @@ uint64_t GBufferReads(const RenderOptions&) { return kBufScene; }
 
 }  // namespace
 
-extern const PassUnit kGBufferPass = {PassId::kGBuffer, "gbuffer", "", /*perSample=*/true, Always,
+extern const PassUnit kGBufferPass = {PassId::kGBuffer, "gbuffer", "", /*perSample=*/true, /*bandBorder=*/0, Always,
                                       GBufferReads, kBufGBuffer, RunGBuffer, GBufferParams};
 
 }  // namespace softmol::effects

@@ -13,8 +13,13 @@ namespace {
 // halo volume; with a trail (§6.2) the volume decays instead of being rebuilt.
 void RunHaloPyramid(FrameContext& c) {
   FrameResources& r = c.res;
-  c.haloReady = RefreshHaloVolume(c.scene, c.options.highlight, c.options.pyramid, r.haloScene, r.haloPyramid,
-                                  r.haloVolume);
+  if (r.sameView) {  // the frame's next band: its volume (a trail must not decay twice a frame)
+    c.haloReady = r.haloReady;
+    c.note = " (reused)";
+    return;
+  }
+  c.haloReady = r.haloReady = RefreshHaloVolume(c.scene, c.options.highlight, c.options.pyramid, r.haloScene,
+                                                r.haloPyramid, r.haloVolume);
 }
 
 // The halo of every G-buffer sample, composited over the resolved pixels with the resolve's
@@ -54,10 +59,10 @@ bool HighlightWanted(const RenderOptions& o) {
   return std::any_of(o.highlight.spheres.begin(), o.highlight.spheres.end(), [](uint8_t b) { return b != 0; });
 }
 
-extern const PassUnit kHaloPyramidPass = {PassId::kHaloPyramid, "halo pyramid", "--highlight", /*perSample=*/false,
+extern const PassUnit kHaloPyramidPass = {PassId::kHaloPyramid, "halo pyramid", "--highlight", /*perSample=*/false, /*bandBorder=*/0,
                                           Highlighted, PyramidReads, kBufSelectionOccupancy | kBufHaloVolume,
                                           RunHaloPyramid, NoParams};
-extern const PassUnit kObjectHalosPass = {PassId::kObjectHalos, "halos", "--highlight", /*perSample=*/true,
+extern const PassUnit kObjectHalosPass = {PassId::kObjectHalos, "halos", "--highlight", /*perSample=*/true, /*bandBorder=*/0,
                                           Highlighted, HaloReads, kBufColor, RunHalos, HaloParams};
 
 }  // namespace softmol::effects

@@ -24,7 +24,7 @@ io::ParamTable<RenderOptions> OutlineParams() {
 
 }  // namespace
 
-extern const PassUnit kOutlinesPass = {PassId::kOutlines, "outlines", "--outlines", /*perSample=*/false, Outlines,
+extern const PassUnit kOutlinesPass = {PassId::kOutlines, "outlines", "--outlines", /*perSample=*/false, /*bandBorder=*/1, Outlines,
                                        OutlineReads, kBufOutline, RunOutlines, OutlineParams};
 
 }  // namespace softmol::effects

@@ -20,7 +20,7 @@ io::ParamTable<RenderOptions> ReferenceParams() {
 }  // namespace
 
 extern const PassUnit kReferenceAoPass = {PassId::kReferenceAo, "reference ao", "--ao reference",
-                                          /*perSample=*/true, Reference, ReferenceReads, kBufAo, RunReference,
+                                          /*perSample=*/true, /*bandBorder=*/0, Reference, ReferenceReads, kBufAo, RunReference,
                                           ReferenceParams};
 
 }  // namespace softmol::effects

@@ -68,7 +68,7 @@ io::ParamTable<RenderOptions> ShadingParams() {
 
 }  // namespace
 
-extern const PassUnit kShadingPass = {PassId::kShading, "shading", "", /*perSample=*/true, ColorWanted,
+extern const PassUnit kShadingPass = {PassId::kShading, "shading", "", /*perSample=*/true, /*bandBorder=*/0, ColorWanted,
                                       ShadingReads, kBufColor, RunShading, ShadingParams};
 
 }  // namespace softmol::effects

@@ -7,6 +7,10 @@ namespace softmol::effects {
 namespace {
 
 void RunShadowMap(FrameContext& c) {
+  if (c.res.sameView && c.res.shadowMap.valid) {  // the frame's next band: the same light view
+    c.note = " (reused)";
+    return;
+  }
   BuildShadowMap(c.scene, c.camera, c.options.shading.lightDirection, c.options.shadow, c.res.shadowMap);
 }
 
@@ -43,9 +47,9 @@ io::ParamTable<RenderOptions> ShadowParams() {
 
 }  // namespace
 
-extern const PassUnit kShadowMapPass = {PassId::kShadowMap, "shadow map", "--shadows", /*perSample=*/false, Shadows,
+extern const PassUnit kShadowMapPass = {PassId::kShadowMap, "shadow map", "--shadows", /*perSample=*/false, /*bandBorder=*/0, Shadows,
                                         MapReads, kBufShadowMap, RunShadowMap, ShadowMapParams};
-extern const PassUnit kShadowsPass = {PassId::kShadows, "shadows", "--shadows", /*perSample=*/true, Shadows,
+extern const PassUnit kShadowsPass = {PassId::kShadows, "shadows", "--shadows", /*perSample=*/true, /*bandBorder=*/0, Shadows,
                                       ShadowReads, kBufShadow, RunShadows, ShadowParams};
 
 }  // namespace softmol::effects

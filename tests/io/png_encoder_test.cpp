@@ -1,7 +1,8 @@
 // tests/io/png_encoder_test.cpp — the parallel PNG encoder: every file is a valid PNG (each
 // chunk's crc32, one zlib stream whose adler32 zlib checks) that libpng decodes to exactly the
 // input pixels, for sizes from 1×1 up (widths and heights that do not divide into chunks), RGB
-// and RGBA, every filter and strategy; and the bytes are the same for any thread count.
+// and RGBA, every filter and strategy; and the bytes are the same for any thread count, and the
+// same when the rows come a few at a time (PngStreamEncoder, posters), however they are split.
 #include <png.h>
 #include <zlib.h>
 
@@ -143,6 +144,54 @@ TEST(PngEncoder, SameBytesForAnyThreadCount) {
     many = EncodePng(w, h, c, px.data(), o);  // every core
     EXPECT_TRUE(one == many) << "1 thread and all threads differ (" << c << " channels)";
   }
+}
+
+// The file made by a stream given `split(k)` rows at its k-th call.
+template <class Split>
+std::vector<uint8_t> Streamed(int w, int h, int c, const std::vector<uint8_t>& px, const PngEncodeOptions& o,
+                              Split split) {
+  PngStreamEncoder stream(w, h, c, o);
+  std::vector<uint8_t> out;
+  stream.Header(out);
+  const size_t rowBytes = size_t(w) * size_t(c);
+  for (int k = 0; stream.rowsGiven() < size_t(h); ++k) {
+    const size_t rows = std::min(size_t(split(k)), size_t(h) - stream.rowsGiven());
+    stream.AddRows(px.data() + stream.rowsGiven() * rowBytes, rows, out);
+  }
+  stream.Finish(out);
+  return out;
+}
+
+TEST(PngEncoder, AStreamGivesTheSameBytesHoweverTheRowsAreSplit) {
+  const int sizes[][2] = {{1, 1}, {5, 3}, {257, 40}, {1000, 301}};
+  for (const auto& s : sizes)
+    for (int c : {3, 4})
+      for (PngFilter f : {PngFilter::kUp, PngFilter::kPaeth, PngFilter::kAdaptive}) {
+        const int w = s[0], h = s[1];
+        const std::vector<uint8_t> px = TestPixels(w, h, c, uint32_t(w + h));
+        PngEncodeOptions o;
+        o.filter = f;
+        o.chunkBytes = 5000;  // chunks of rows that bands cut through
+        const std::vector<uint8_t> whole = EncodePng(w, h, c, px.data(), o);
+        const std::string what = std::to_string(w) + "x" + std::to_string(h) + "x" + std::to_string(c);
+        EXPECT_TRUE(Streamed(w, h, c, px, o, [](int) { return 1; }) == whole) << what << ", one row a call";
+        EXPECT_TRUE(Streamed(w, h, c, px, o, [](int k) { return 1 + (k * 7) % 13; }) == whole) << what;
+        EXPECT_TRUE(Streamed(w, h, c, px, o, [](int k) { return k % 3 == 0 ? 0 : 37; }) == whole)
+            << what << ", with empty calls";
+        EXPECT_TRUE(Streamed(w, h, c, px, o, [h](int) { return h; }) == whole) << what << ", one call";
+      }
+}
+
+TEST(PngEncoder, AStreamRefusesMissingAndExtraRows) {
+  PngStreamEncoder stream(4, 3, 3);
+  std::vector<uint8_t> out, px(4 * 3 * 4, 9);
+  stream.Header(out);
+  stream.AddRows(px.data(), 2, out);
+  EXPECT_THROW(stream.Finish(out), std::invalid_argument);
+  EXPECT_THROW(stream.AddRows(px.data(), 2, out), std::invalid_argument);
+  stream.AddRows(px.data(), 1, out);
+  stream.Finish(out);
+  EXPECT_EQ(CheckContainer(out), 3 * (1 + 4 * 3));
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
 // tests/raster/gbuffer_test.cpp — the G-buffer's planes (common/uninit_vector.h) leave new samples
 // unset, so two promises carry the bytes: Resize with clearing sets exactly the samples a plane
 // gains to 0 and keeps the rest, and the rasterizer writes every sample of every plane it asked
-// for (a buffer full of garbage comes back equal to a fresh render).
+// for (a buffer full of garbage comes back equal to a fresh render). A window of a frame
+// (raster/camera.h) renders the frame's own samples there.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -45,6 +46,58 @@ TEST(GBuffer, TheRasterizerWritesEverySampleOfEveryPlane) {
   std::fill(reused.primitiveId.begin(), reused.primitiveId.end(), 0xDEADBEEFu);
   RenderGBuffer(s.scene, s.camera, opt, reused);  // same size: no Resize, the copy-out alone
   EXPECT_EQ(test::GBufferBytes(fresh), test::GBufferBytes(reused));
+}
+
+// Samples [x0, x0 + w) × [y0, y0 + h) of every plane of `g`, as a w × h G-buffer.
+GBuffer Crop(const GBuffer& g, int x0, int y0, int w, int h) {
+  GBuffer c;
+  c.Resize(w, h, g.channels);
+  auto copy = [&](const auto& from, auto& to) {
+    if (from.empty()) return;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) to[c.Index(x, y)] = from[g.Index(x0 + x, y0 + y)];
+  };
+  copy(g.depth, c.depth), copy(g.normalX, c.normalX), copy(g.normalY, c.normalY), copy(g.normalZ, c.normalZ);
+  copy(g.baseColor, c.baseColor), copy(g.primitiveId, c.primitiveId), copy(g.surfaceU, c.surfaceU);
+  copy(g.surfaceV, c.surfaceV), copy(g.surfaceW, c.surfaceW), copy(g.line, c.line), copy(g.capped, c.capped);
+  return c;
+}
+
+TEST(GBuffer, AWindowRendersTheFramesOwnSamples) {
+  for (bool ortho : {false, true}) {
+    test::NamedScene s = test::RandomBallsAndSticks(5, 1200, 181, 97, ortho);
+    FitNearFar(s.camera, s.scene);
+    FrameOptions opt;
+    opt.channels = kDepth | kNormal | kBaseColor | kPrimitiveId | kSurfaceCoord | kLine | kCapped;
+    opt.contourWidth = 0.3f;
+    GBuffer frame;
+    RenderGBuffer(s.scene, s.camera, opt, frame);
+    // Windows at odd offsets, one a single row, one reaching the frame's corner.
+    const int windows[][4] = {{0, 0, 181, 13}, {37, 41, 64, 1}, {3, 50, 178, 47}, {100, 96, 81, 1}};
+    for (const auto& w : windows) {
+      Camera window = RowWindow(s.camera, w[1], w[3]);
+      window.windowX = w[0], window.width = w[2];
+      GBuffer part;
+      RenderGBuffer(s.scene, window, opt, part);
+      EXPECT_EQ(test::GBufferBytes(part), test::GBufferBytes(Crop(frame, w[0], w[1], w[2], w[3])))
+          << "ortho " << ortho << ", window at " << w[0] << "," << w[1];
+    }
+  }
+}
+
+TEST(Camera, AWindowKeepsTheFramesProjection) {
+  Camera c;
+  c.width = 640, c.height = 480;
+  const Camera band = RowWindow(c, 100, 16);
+  EXPECT_TRUE(IsWindow(band));
+  EXPECT_FALSE(IsWindow(c));
+  EXPECT_EQ(PixelScale(band), PixelScale(c));
+  EXPECT_EQ(HalfHeight(band), 240.0 - 100.0);
+  const Camera ss = Supersampled(band, 3);
+  EXPECT_EQ(ss.height, 48);
+  EXPECT_EQ(ss.windowY, 300);
+  EXPECT_EQ(FrameHeight(ss), 1440);
+  EXPECT_EQ(PixelScale(ss), PixelScale(Supersampled(c, 3)));
 }
 
 }  // namespace

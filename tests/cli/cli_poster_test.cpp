@@ -1,0 +1,83 @@
+// tests/cli/cli_poster_test.cpp — images rendered in bands and streamed to their PNG
+// (--band-rows, and by default above 2^25 samples): the file is byte for byte the one-pass
+// render's, with every whole-frame effect on, opaque or transparent; the profile shows each
+// band's passes; what a band cannot have (EXR, AOVs, the GL mirror) is refused by name; sides
+// up to 32768 pixels render.
+#include <gtest/gtest.h>
+
+#include "io/image_io.h"
+#include "tests/cli/run_command.h"
+
+namespace softmol::test {
+namespace {
+
+namespace fs = std::filesystem;
+const std::string k1tii = "'" + Data("1tii.pdb") + "'";
+const std::string kPept = "'" + Data("pept.pdb") + "'";
+
+TEST(CliPoster, BandsWriteTheOnePassFileByteForByte) {
+  const fs::path dir = ScratchDir("poster_bands");
+  const std::string effects[] = {
+      "--outlines --shadows --halos --contours --depth-cue --highlight 'chain A' --ssaa 2",
+      "--style balls --ao cone --outlines --near-clip 80 --transparent",
+  };
+  for (const std::string& e : effects) {
+    const std::string common = "render " + k1tii + " --size 203x151 " + e;
+    const CommandResult whole = RunSoftmol(common + " -q -o " + Q(dir / "whole.png"), dir);
+    ASSERT_EQ(whole.exitCode, 0) << whole.err;
+    for (int rows : {1, 16, 150}) {
+      const CommandResult banded =
+          RunSoftmol(common + " -q --band-rows " + std::to_string(rows) + " -o " + Q(dir / "banded.png"), dir);
+      ASSERT_EQ(banded.exitCode, 0) << banded.err;
+      ASSERT_GT(fs::file_size(dir / "whole.png"), 1000u);
+      EXPECT_TRUE(Slurp(dir / "banded.png") == Slurp(dir / "whole.png")) << e << ", bands of " << rows << " rows";
+    }
+  }
+}
+
+TEST(CliPoster, TheProfileShowsEveryBand) {
+  const fs::path dir = ScratchDir("poster_profile");
+  const CommandResult r =
+      RunSoftmol("render " + kPept + " --ao none --shadows --size 64x48 --band-rows 16 --profile " + Q(dir / "p.json") +
+                 " -o " + Q(dir / "p.png"), dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const std::string trace = Slurp(dir / "p.json");
+  size_t bands = 0;
+  for (size_t at = trace.find("\"write band\""); at != std::string::npos; at = trace.find("\"write band\"", at + 1))
+    ++bands;
+  EXPECT_EQ(bands, 3u) << trace;
+  EXPECT_NE(trace.find("shadow map (reused)"), std::string::npos) << "the later bands keep the first band's map";
+  EXPECT_NE(r.out.find("shadow map"), std::string::npos) << r.out;  // the summary sums the bands
+}
+
+TEST(CliPoster, WhatABandCannotHaveIsRefusedByName) {
+  const fs::path dir = ScratchDir("poster_refused");
+  const std::string common = "render " + kPept + " --ao none --size 64x48 --band-rows 16 ";
+  const CommandResult exr = RunSoftmol(common + "-o " + Q(dir / "p.exr"), dir);
+  EXPECT_EQ(exr.exitCode, 2);
+  EXPECT_NE(exr.err.find("--band-rows: an image rendered in bands is streamed to a PNG"), std::string::npos)
+      << exr.err;
+  const CommandResult aov = RunSoftmol(common + "--aov depth -o " + Q(dir / "p.png"), dir);
+  EXPECT_EQ(aov.exitCode, 2);
+  EXPECT_NE(aov.err.find("--aov: AOVs are written as EXR"), std::string::npos) << aov.err;
+  const CommandResult wide = RunSoftmol("render " + kPept + " --ao none --size 20000x10 --ssaa 2 --band-rows 4 -o " + Q(dir / "p.png"), dir);
+  EXPECT_EQ(wide.exitCode, 2);
+  EXPECT_NE(wide.err.find("--ssaa: width × ssaa is more than 32768"), std::string::npos) << wide.err;
+  EXPECT_FALSE(fs::exists(dir / "p.png"));
+  EXPECT_FALSE(fs::exists(dir / "p.exr"));
+}
+
+TEST(CliPoster, SidesUpTo32768PixelsRender) {
+  const fs::path dir = ScratchDir("poster_wide");
+  const CommandResult r = RunSoftmol("render " + kPept + " --ao none --size 32768x3 -q -o " + Q(dir / "wide.png"), dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const io::Image8 img = io::ReadImage8((dir / "wide.png").string());
+  EXPECT_EQ(img.width, 32768);
+  EXPECT_EQ(img.height, 3);
+  const CommandResult over = RunSoftmol("render " + kPept + " --size 32769x3 -o " + Q(dir / "no.png"), dir);
+  EXPECT_EQ(over.exitCode, 2);
+  EXPECT_NE(over.err.find("each side must be 1 to 32768 pixels"), std::string::npos) << over.err;
+}
+
+}  // namespace
+}  // namespace softmol::test
