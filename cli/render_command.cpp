@@ -35,6 +35,7 @@
 #include "io/selection.h"
 #include "io/trajectory.h"
 #include "raster/camera.h"
+#include "raster/frame.h"
 #include "raster/representation.h"
 #include "scene/colors.h"
 #include "scene/layers.h"
@@ -351,16 +352,19 @@ raster::Camera FrameCamera(const RenderArgs& a, const std::optional<scene::View>
   return cam;
 }
 
-// A frame renders in one pass of at most 2^28 samples, or in bands (posters) streamed to a
-// PNG by the CPU backend, each band a window at most 32768 samples wide (raster/frame.h).
+// A frame renders in one pass of at most 2^28 samples and raster::kMaxFrameSide samples a
+// side, or in bands (posters, effects/bands.h) streamed to a PNG by the CPU backend.
 void CheckFrameSize(const RenderArgs& a, const RunPlan& p) {
   const effects::RenderOptions& ro = p.options;
   const int64_t perRow = int64_t(p.size.width) * ro.ssaa * ro.ssaa;
   const io::SourceLocation why{a.bandRows > 0 ? "--band-rows" : "--size"};
   if (p.bandRows == 0) {
+    const char* inBands = " (larger images render in bands, to a PNG without AOVs)";
     if (perRow * p.size.height > (int64_t(1) << 28))
-      throw io::InputError({"--ssaa"}, "size × ssaa² is more than 2^28 samples (larger images render in bands, "
-                                       "to a PNG without AOVs)");
+      throw io::InputError({"--ssaa"}, std::string("size × ssaa² is more than 2^28 samples") + inBands);
+    if (int64_t(std::max(p.size.width, p.size.height)) * ro.ssaa > raster::kMaxFrameSide)
+      throw io::InputError({"--ssaa"}, "a side × ssaa is more than " + std::to_string(raster::kMaxFrameSide) +
+                                           " samples" + inBands);
     return;
   }
   if (p.kind != OutputKind::kPng)
@@ -372,8 +376,11 @@ void CheckFrameSize(const RenderArgs& a, const RunPlan& p) {
   if (a.backend == "gl")
     throw io::InputError({"--backend"}, "the GL mirror renders whole images; an image rendered in bands (see "
                                         "--band-rows) is the CPU backend's");
-  if (int64_t(p.size.width) * ro.ssaa > 32768)
-    throw io::InputError({"--ssaa"}, "width × ssaa is more than 32768 samples");
+  if (p.bandRows > effects::MaxBandRows(ro))
+    throw io::InputError({"--band-rows"}, "bands of " + std::to_string(p.bandRows) + " rows are taller than " +
+                                              std::to_string(raster::kMaxFrameSide) + " samples (at most " +
+                                              std::to_string(effects::MaxBandRows(ro)) + " rows at --ssaa " +
+                                              std::to_string(ro.ssaa) + ")");
   if (perRow * p.bandRows > (int64_t(1) << 28))
     throw io::InputError({"--band-rows"}, "a band of " + std::to_string(p.bandRows) +
                                               " rows is more than 2^28 samples (size × ssaa²)");
@@ -423,10 +430,8 @@ RunPlan PlanRun(const RenderArgs& a) {
   // Bands when asked for, or by default where the output can take them (a PNG without AOVs,
   // from the CPU backend); CheckFrameSize says what a banded image cannot have.
   const bool bandable = a.toFiles && p.kind == OutputKind::kPng && p.options.aovs == 0 && a.backend == "cpu";
-  const int rows = a.bandRows > 0 ? a.bandRows
-                   : bandable     ? effects::AutomaticBandRows(p.options, p.size.width, p.size.height)
-                                  : p.size.height;
-  if (rows < p.size.height) p.bandRows = rows;
+  if (a.bandRows > 0) p.bandRows = std::min(a.bandRows, p.size.height);
+  else if (bandable) p.bandRows = effects::AutomaticBandRows(p.options, p.size.width, p.size.height);
   CheckCombinations(a, p);
   if (!a.highlight.empty()) p.highlight = io::ParseSelection(a.highlight, {"--highlight"});
   if (!a.view.empty()) p.view = scene::ParseView(a.view, {"--view"});

@@ -2,6 +2,7 @@
 #include "effects/bands.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <cstring>
 
 #include "common/check.h"
@@ -9,16 +10,26 @@
 
 namespace softmol::effects {
 
-int AutomaticBandRows(const RenderOptions& o, int width, int height) {
-  const size_t perRow = size_t(std::max(width, 1)) * size_t(o.ssaa) * size_t(o.ssaa);
-  if (perRow * size_t(std::max(height, 0)) <= kOnePassSamples) return height;
-  return int(std::clamp<size_t>(kBandSamples / perRow, 1, size_t(height)));
+int BandBorderRows(const RenderOptions& o) {
+  // Every unit the options switch on (a superset of the plan, which prunes the unread ones, and
+  // defined before --ao auto has chosen a method: AO passes need no border).
+  int samples = 0;
+  for (const PassUnit* unit : PassRegistry())
+    if (unit->wanted(o)) samples = std::max(samples, unit->bandBorder);
+  return (samples + o.ssaa - 1) / o.ssaa;
 }
 
-int BandBorderRows(const RenderOptions& o) {
-  int samples = 0;
-  for (const PlannedPass& p : PlanPasses(o)) samples = std::max(samples, Pass(p.id).bandBorder);
-  return (samples + o.ssaa - 1) / o.ssaa;
+int MaxBandRows(const RenderOptions& o) {
+  return std::max(1, raster::kMaxFrameSide / o.ssaa - 2 * BandBorderRows(o));
+}
+
+int AutomaticBandRows(const RenderOptions& o, int width, int height) {
+  const size_t perRow = size_t(std::max(width, 1)) * size_t(o.ssaa) * size_t(o.ssaa);
+  const bool fits = perRow * size_t(std::max(height, 0)) <= kOnePassSamples &&
+                    int64_t(width) * o.ssaa <= raster::kMaxFrameSide && int64_t(height) * o.ssaa <= raster::kMaxFrameSide;
+  if (fits) return 0;
+  const size_t rows = std::min({kBandSamples / perRow, size_t(MaxBandRows(o)), size_t(std::max(height, 1))});
+  return int(std::max<size_t>(rows, 1));
 }
 
 std::vector<FrameBand> SplitRows(int height, int bandRows) {
@@ -30,63 +41,84 @@ std::vector<FrameBand> SplitRows(int height, int bandRows) {
 
 namespace {
 
-// Rows [skip, skip + rows) of a plane holding `perPixel` values a pixel, `width` pixels a row.
-template <class Plane>
-void CutRows(const Plane& from, size_t width, size_t perPixel, int skip, int rows, Plane& to) {
-  if (from.empty()) {
-    to.clear();
-    return;
-  }
-  const size_t rowValues = width * perPixel;
-  to.resize(rowValues * size_t(rows));
-  std::memcpy(to.data(), from.data() + rowValues * size_t(skip), rowValues * size_t(rows) * sizeof(from[0]));
+// Gives `to` the planes `like` has, for a w × h frame.
+void ShapeLike(const RenderedFrame& like, int w, int h, RenderedFrame& to) {
+  const size_t n = size_t(w) * size_t(h);
+  to.width = w, to.height = h;
+  const auto shape = [n](const auto& from, auto& plane, size_t perPixel) {
+    if (from.empty()) plane.clear();
+    else plane.resize(n * perPixel);
+  };
+  shape(like.rgba, to.rgba, 4);
+  shape(like.depth, to.depth, 1), shape(like.normalX, to.normalX, 1), shape(like.normalY, to.normalY, 1);
+  shape(like.normalZ, to.normalZ, 1), shape(like.id, to.id, 1), shape(like.ao, to.ao, 1);
 }
 
-void CutBand(const RenderedFrame& f, int skip, int rows, RenderedFrame& out) {
-  const size_t w = size_t(f.width);
-  out.width = f.width, out.height = rows;
-  CutRows(f.rgba, w, 4, skip, rows, out.rgba);
-  CutRows(f.depth, w, 1, skip, rows, out.depth);
-  CutRows(f.normalX, w, 1, skip, rows, out.normalX);
-  CutRows(f.normalY, w, 1, skip, rows, out.normalY);
-  CutRows(f.normalZ, w, 1, skip, rows, out.normalZ);
-  CutRows(f.id, w, 1, skip, rows, out.id);
-  CutRows(f.ao, w, 1, skip, rows, out.ao);
-  out.passes = f.passes;
-  out.rasterStats = f.rasterStats;
-  out.shadowStats = f.shadowStats;
-  out.totalMs = f.totalMs;
+// The w × h pixels of `from` at (fromX, fromY) into `to` at (toX, 0); rows top first.
+void CopyBlock(const RenderedFrame& from, int fromX, int fromY, int w, int h, RenderedFrame& to, int toX) {
+  const auto copy = [&](const auto& src, auto& dst, size_t perPixel) {
+    if (src.empty()) return;
+    const size_t rowValues = size_t(w) * perPixel;
+    for (int r = 0; r < h; ++r)
+      std::memcpy(dst.data() + (size_t(r) * size_t(to.width) + size_t(toX)) * perPixel,
+                  src.data() + (size_t(fromY + r) * size_t(from.width) + size_t(fromX)) * perPixel,
+                  rowValues * sizeof(src[0]));
+  };
+  copy(from.rgba, to.rgba, 4);
+  copy(from.depth, to.depth, 1), copy(from.normalX, to.normalX, 1), copy(from.normalY, to.normalY, 1);
+  copy(from.normalZ, to.normalZ, 1), copy(from.id, to.id, 1), copy(from.ao, to.ao, 1);
+}
+
+// The band's timings: its first window's passes and counters, then each later window's pass
+// times added (every window runs the same plan, so pass i is the same pass in each).
+void AddTimings(const RenderedFrame& window, bool first, RenderedFrame& band) {
+  if (first) {
+    band.passes = window.passes;
+    band.rasterStats = window.rasterStats;
+    band.shadowStats = window.shadowStats;
+    band.totalMs = window.totalMs;
+    return;
+  }
+  for (size_t i = 0; i < band.passes.size() && i < window.passes.size(); ++i)
+    band.passes[i].durationMs += window.passes[i].durationMs;
+  band.totalMs += window.totalMs;
 }
 
 }  // namespace
 
 void RenderBands(const raster::PrimitiveScene& scene, const raster::Camera& camera, const RenderOptions& o,
-                 int bandRows, const BandSink& sink, FrameResources* resources) {
+                 int bandRows, const BandSink& sink, FrameResources* resources, int maxWindowSide) {
+  const int width = camera.width, height = camera.height, border = BandBorderRows(o);
   SOFTMOL_CHECK(!raster::IsWindow(camera));
+  SOFTMOL_CHECK(maxWindowSide >= 1 && maxWindowSide <= raster::kMaxFrameSide);
+  SOFTMOL_CHECK(bandRows >= 1 && (bandRows + 2 * border) * o.ssaa <= maxWindowSide);
+  SOFTMOL_CHECK(maxWindowSide / o.ssaa > 2 * border);
   FrameResources local;
   FrameResources& res = resources ? *resources : local;
-  const int height = camera.height, border = BandBorderRows(o);
-  RenderedFrame rendered, cut;
+  // Output columns a window holds besides its borders (the whole width when it fits).
+  const int columns = width * o.ssaa <= maxWindowSide ? width : maxWindowSide / o.ssaa - 2 * border;
+  RenderedFrame window, band;
   // sameView must not outlive the frame, even when a band throws.
   struct SameViewReset {
     FrameResources& r;
     ~SameViewReset() { r.sameView = false; }
   } reset{res};
   res.sameView = false;
-  for (const FrameBand& band : SplitRows(height, bandRows)) {
-    const int above = std::min(border, band.firstRow);
-    const int below = std::min(border, height - band.firstRow - band.rows);
-    const int rows = above + band.rows + below;
+  for (const FrameBand& b : SplitRows(height, bandRows)) {
+    const int above = std::min(border, b.firstRow), below = std::min(border, height - b.firstRow - b.rows);
     // Window rows count up from the bottom; output rows down from the top.
-    const int windowY = height - (band.firstRow + band.rows + below);
-    RenderFrame(scene, raster::RowWindow(camera, windowY, rows), o, rendered, &res);
-    res.sameView = true;
-    if (above == 0 && below == 0) {
-      sink(rendered, band);
-    } else {
-      CutBand(rendered, above, band.rows, cut);
-      sink(cut, band);
+    const int windowY = height - (b.firstRow + b.rows + below), windowRows = above + b.rows + below;
+    for (int x0 = 0; x0 < width; x0 += columns) {
+      const int cols = std::min(columns, width - x0);
+      const int left = std::min(border, x0), right = std::min(border, width - x0 - cols);
+      RenderFrame(scene, raster::Window(camera, x0 - left, windowY, left + cols + right, windowRows), o, window, &res);
+      res.sameView = true;
+      if (x0 == 0) ShapeLike(window, width, b.rows, band);
+      AddTimings(window, x0 == 0, band);
+      if (cols == width && above == 0 && below == 0) std::swap(window, band);  // the window is the band
+      else CopyBlock(window, left, above, cols, b.rows, band, x0);
     }
+    sink(band, b);
   }
 }
 

@@ -1,10 +1,12 @@
 // effects/bands.h — a frame too large to hold at once (a poster), rendered as horizontal bands
-// of rows in bounded memory. Each band is a window of the frame's camera (raster/camera.h: the
-// frame's own rays, bit for bit), rendered with the rows that the plan's neighbour-reading
-// passes need past its edges (PassUnit::bandBorder: Sobel's one), then cut to its own rows, so
-// every band's rows are the whole frame's rows byte for byte. Scene-wide work is done once:
-// the AO bake and the occupancy pyramid keep their own keys, and FrameResources::sameView
-// keeps the shadow map and the halo volume from the first band.
+// of rows in bounded memory. A band is rendered as a window of the frame's camera
+// (raster/camera.h: the frame's own rays, bit for bit), or as several windows side by side where
+// it is wider than the rasterizer's widest window (raster::kMaxFrameSide samples), each window
+// with the samples the plan's neighbour-reading passes need past its edges
+// (PassUnit::bandBorder: Sobel's one) and cut to its own, so every band's rows are the whole
+// frame's rows byte for byte. Scene-wide work is done once: the AO bake and the occupancy
+// pyramid keep their own keys, and FrameResources::sameView keeps the shadow map and the halo
+// volume from the first window.
 #pragma once
 
 #include <cstddef>
@@ -27,24 +29,32 @@ struct FrameBand {
 inline constexpr size_t kOnePassSamples = size_t(1) << 25;
 inline constexpr size_t kBandSamples = size_t(1) << 23;
 
-// Rows per band for a width × height frame with these options: `height` (one pass) when its
-// samples fit kOnePassSamples, else the rows whose samples fit kBandSamples (at least 1).
+// Rows per band for a width × height frame with these options: 0 (one pass) when its samples
+// fit kOnePassSamples and its sides raster::kMaxFrameSide, else the rows whose samples fit
+// kBandSamples (at least 1, and few enough for the rasterizer's tallest window).
 int AutomaticBandRows(const RenderOptions& options, int width, int height);
 
-// Output rows each band renders past each of its edges for these options (where the frame has
-// rows there): the plan's widest PassUnit::bandBorder, in samples, rounded up to output rows.
+// The most rows a band can have for these options: with its border rows, its samples must fit
+// the rasterizer's tallest window.
+int MaxBandRows(const RenderOptions& options);
+
+// Output rows (and columns) each band's window renders past its edges for these options (where
+// the frame has pixels there): the widest PassUnit::bandBorder of the passes they switch on, in
+// samples, rounded up to output pixels.
 int BandBorderRows(const RenderOptions& options);
 
 // Bands of `bandRows` rows from the top (the last one shorter when they do not divide).
 std::vector<FrameBand> SplitRows(int height, int bandRows);
 
-// Receives each band cut to its own rows (width × band.rows, its passes and timings the
-// band's), in order from the top.
+// Receives each band cut to its own rows (width × band.rows; its passes' timings summed over
+// its windows, its raster and shadow counters its first window's), in order from the top.
 using BandSink = std::function<void(const RenderedFrame& rows, const FrameBand& band)>;
 
-// Renders `camera`'s frame (not itself a window) in bands of `bandRows` rows; `resources`
-// as RenderFrame's (kept across bands and frames).
+// Renders `camera`'s frame (not itself a window) in bands of `bandRows` rows (at most
+// MaxBandRows); `resources` as RenderFrame's (kept across bands and frames). `maxWindowSide`,
+// in samples, is the rasterizer's limit; tests pass less to split small frames into windows.
 void RenderBands(const raster::PrimitiveScene& scene, const raster::Camera& camera, const RenderOptions& options,
-                 int bandRows, const BandSink& sink, FrameResources* resources = nullptr);
+                 int bandRows, const BandSink& sink, FrameResources* resources = nullptr,
+                 int maxWindowSide = raster::kMaxFrameSide);
 
 }  // namespace softmol::effects

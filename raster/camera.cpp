@@ -184,12 +184,11 @@ double PixelScale(const Camera& cam) {
   return 2.0 * std::tan(0.5 * cam.fovYDegrees * kDeg) / h;
 }
 
-Camera RowWindow(const Camera& frame, int y0, int rows) {
+Camera Window(const Camera& frame, int x0, int y0, int width, int height) {
   Camera c = frame;
   c.frameWidth = FrameWidth(frame), c.frameHeight = FrameHeight(frame);
-  c.windowX = frame.windowX;
-  c.windowY = frame.windowY + y0;
-  c.height = rows;
+  c.windowX = frame.windowX + x0, c.windowY = frame.windowY + y0;
+  c.width = width, c.height = height;
   return c;
 }
 

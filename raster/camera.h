@@ -38,8 +38,9 @@ inline bool IsWindow(const Camera& c) {
 inline double HalfWidth(const Camera& c) { return 0.5 * FrameWidth(c) - c.windowX; }
 inline double HalfHeight(const Camera& c) { return 0.5 * FrameHeight(c) - c.windowY; }
 
-// The rows [y0, y0 + rows) (y up) of `frame`'s frame, all its columns, as a window camera.
-Camera RowWindow(const Camera& frame, int y0, int rows);
+// The pixels [x0, x0 + width) × [y0, y0 + height) (y up) of `frame`'s frame as a window camera
+// (x0, y0 relative to `frame`'s own window when it is one).
+Camera Window(const Camera& frame, int x0, int y0, int width, int height);
 // The same view with `samples` × the pixels along each axis (supersampling): a window's
 // position and its frame scale with it.
 Camera Supersampled(const Camera& camera, int samples);

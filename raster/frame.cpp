@@ -237,8 +237,7 @@ FrameStats RenderGBuffer(const PrimitiveScene& scene, const Camera& camera,
   SOFTMOL_CHECK(options.tileSize >= 8 && options.tileSize <= 128 &&
                 std::has_single_bit(unsigned(options.tileSize)));
   SOFTMOL_CHECK(scene.size() <= detail::kIndexMask);
-  // BinEntry's int16 boxes are inclusive: their last pixel, 32767, fits.
-  SOFTMOL_CHECK(camera.width <= 32768 && camera.height <= 32768);
+  SOFTMOL_CHECK(camera.width <= kMaxFrameSide && camera.height <= kMaxFrameSide);
   SOFTMOL_CHECK(ValidFrameOptions(options));
   FrameWorkspace local;
   FrameWorkspace::Impl& ws = workspace ? *workspace->impl : *local.impl;

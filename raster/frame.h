@@ -65,6 +65,10 @@ class FrameWorkspace {
   std::unique_ptr<Impl> impl;
 };
 
+// The widest and tallest window (or frame) RenderGBuffer takes, in samples: BinEntry's int16
+// boxes are inclusive, so their last pixel, 32767, fits.
+inline constexpr int kMaxFrameSide = 32768;
+
 // Renders `scene` into `out` (resized to camera.width × camera.height). Threads: whatever
 // the current TBB arena / global_control allows.
 FrameStats RenderGBuffer(const PrimitiveScene& scene, const Camera& camera,

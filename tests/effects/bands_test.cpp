@@ -1,7 +1,7 @@
 // tests/effects/bands_test.cpp — a frame rendered in bands (effects/bands.h) is the frame
 // rendered at once, byte for byte, with every effect on (the neighbour-reading Sobel outlines
-// at the band edges included), supersampled or not, for bands of one row up; the border comes
-// from the plan; the layout covers the frame.
+// at the band edges included), supersampled or not, for bands of one row up and for bands split
+// into several windows; the border comes from the plan; the layout covers the frame.
 #include <cstring>
 #include <string>
 #include <vector>
@@ -42,7 +42,8 @@ Stitched Whole(const raster::PrimitiveScene& scene, const raster::Camera& cam, c
   return s;
 }
 
-Stitched Banded(const raster::PrimitiveScene& scene, const raster::Camera& cam, const RenderOptions& o, int rows) {
+Stitched Banded(const raster::PrimitiveScene& scene, const raster::Camera& cam, const RenderOptions& o, int rows,
+               int maxWindowSide = raster::kMaxFrameSide) {
   Stitched s;
   FrameResources res;
   RenderBands(scene, cam, o, rows, [&](const RenderedFrame& f, const FrameBand& band) {
@@ -50,7 +51,7 @@ Stitched Banded(const raster::PrimitiveScene& scene, const raster::Camera& cam, 
     EXPECT_EQ(f.height, band.rows);
     EXPECT_EQ(f.width, cam.width);
     AppendFrame(s, f);
-  }, &res);
+  }, &res, maxWindowSide);
   EXPECT_FALSE(res.sameView) << "the flag must not outlive the frame";
   return s;
 }
@@ -102,6 +103,10 @@ TEST(Bands, EveryEffectGivesTheWholeFramesBytes) {
                                std::to_string(c.ortho) + ", bands of " + std::to_string(rows) + " rows";
       ExpectSameBytes(Banded(s.scene, s.camera, o, rows), whole, what);
     }
+    // Bands wider than the (here tiny) widest window: 13 windows side by side, each with its
+    // border columns (narrow, so that the saturating Sobel lines see many window edges).
+    const int side = 8 * c.ssaa;
+    ExpectSameBytes(Banded(s.scene, s.camera, o, 5, side), whole, "windows of " + std::to_string(side) + " samples");
   }
 }
 
@@ -129,9 +134,11 @@ TEST(Bands, SplitRowsCoverTheFrameFromTheTop) {
 
 TEST(Bands, APosterIsBandedAndAnHdFrameIsNot) {
   RenderOptions o;
-  EXPECT_EQ(AutomaticBandRows(o, 1920, 1080), 1080);
+  EXPECT_EQ(AutomaticBandRows(o, 1920, 1080), 0);
   o.ssaa = 4;
-  EXPECT_EQ(AutomaticBandRows(o, 1920, 1080), 1080);  // 33 M samples: still one pass
+  EXPECT_EQ(AutomaticBandRows(o, 1920, 1080), 0);  // 33 M samples: still one pass
+  EXPECT_EQ(AutomaticBandRows(o, 10000, 10), 10);   // few samples, but wider than a window
+  EXPECT_EQ(AutomaticBandRows(o, 10, 10000), raster::kMaxFrameSide / 4);  // taller than one
   o.ssaa = 1;
   EXPECT_EQ(AutomaticBandRows(o, 16384, 16384), int(kBandSamples / 16384));
   o.ssaa = 2;

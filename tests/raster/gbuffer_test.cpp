@@ -75,10 +75,8 @@ TEST(GBuffer, AWindowRendersTheFramesOwnSamples) {
     // Windows at odd offsets, one a single row, one reaching the frame's corner.
     const int windows[][4] = {{0, 0, 181, 13}, {37, 41, 64, 1}, {3, 50, 178, 47}, {100, 96, 81, 1}};
     for (const auto& w : windows) {
-      Camera window = RowWindow(s.camera, w[1], w[3]);
-      window.windowX = w[0], window.width = w[2];
       GBuffer part;
-      RenderGBuffer(s.scene, window, opt, part);
+      RenderGBuffer(s.scene, Window(s.camera, w[0], w[1], w[2], w[3]), opt, part);
       EXPECT_EQ(test::GBufferBytes(part), test::GBufferBytes(Crop(frame, w[0], w[1], w[2], w[3])))
           << "ortho " << ortho << ", window at " << w[0] << "," << w[1];
     }
@@ -88,7 +86,7 @@ TEST(GBuffer, AWindowRendersTheFramesOwnSamples) {
 TEST(Camera, AWindowKeepsTheFramesProjection) {
   Camera c;
   c.width = 640, c.height = 480;
-  const Camera band = RowWindow(c, 100, 16);
+  const Camera band = Window(c, 0, 100, 640, 16);
   EXPECT_TRUE(IsWindow(band));
   EXPECT_FALSE(IsWindow(c));
   EXPECT_EQ(PixelScale(band), PixelScale(c));
