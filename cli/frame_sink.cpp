@@ -173,7 +173,7 @@ void FrameSink::RenderBands(const raster::PrimitiveScene& scene, const raster::C
   io::PngStreamEncoder png(camera.width, camera.height, options.transparent ? 4 : 3);
   std::vector<uint8_t> bytes;
   png.Header(bytes);
-  // The frame's summary: every band runs the same plan, so pass i is the same pass in each.
+  // The frame's summary: the bands' pass times added up.
   effects::RenderedFrame& sum = frame_;
   sum = {};
   sum.width = camera.width, sum.height = camera.height;
@@ -188,11 +188,7 @@ void FrameSink::RenderBands(const raster::PrimitiveScene& scene, const raster::C
     const double ms = MsSince(w0);
     if (tracing_) trace_.AddComplete("write band", "output", cursorMs_, ms);
     cursorMs_ += ms;
-    if (sum.passes.empty()) sum.passes = band.passes;
-    else
-      for (size_t i = 0; i < sum.passes.size() && i < band.passes.size(); ++i)
-        sum.passes[i].durationMs += band.passes[i].durationMs;
-    sum.totalMs += band.totalMs;
+    effects::AddPassTimes(band, sum);
   }, &resources);
   png.Finish(bytes);
   file.Write(bytes.data(), bytes.size());

@@ -69,22 +69,26 @@ void CopyBlock(const RenderedFrame& from, int fromX, int fromY, int w, int h, Re
   copy(from.normalZ, to.normalZ, 1), copy(from.id, to.id, 1), copy(from.ao, to.ao, 1);
 }
 
-// The band's timings: its first window's passes and counters, then each later window's pass
-// times added (every window runs the same plan, so pass i is the same pass in each).
+// The band's timings: its first window's passes and counters, then each later window's.
 void AddTimings(const RenderedFrame& window, bool first, RenderedFrame& band) {
   if (first) {
-    band.passes = window.passes;
+    band.passes.clear();
+    band.totalMs = 0;
     band.rasterStats = window.rasterStats;
     band.shadowStats = window.shadowStats;
-    band.totalMs = window.totalMs;
-    return;
   }
-  for (size_t i = 0; i < band.passes.size() && i < window.passes.size(); ++i)
-    band.passes[i].durationMs += window.passes[i].durationMs;
-  band.totalMs += window.totalMs;
+  AddPassTimes(window, band);
 }
 
 }  // namespace
+
+void AddPassTimes(const RenderedFrame& part, RenderedFrame& sum) {
+  if (sum.passes.empty()) sum.passes = part.passes;
+  else
+    for (size_t i = 0; i < sum.passes.size() && i < part.passes.size(); ++i)
+      sum.passes[i].durationMs += part.passes[i].durationMs;
+  sum.totalMs += part.totalMs;
+}
 
 void RenderBands(const raster::PrimitiveScene& scene, const raster::Camera& camera, const RenderOptions& o,
                  int bandRows, const BandSink& sink, FrameResources* resources, int maxWindowSide) {

@@ -46,6 +46,10 @@ int BandBorderRows(const RenderOptions& options);
 // Bands of `bandRows` rows from the top (the last one shorter when they do not divide).
 std::vector<FrameBand> SplitRows(int height, int bandRows);
 
+// Adds `part`'s pass times (a window's, a band's) to `sum`'s: every window of a frame runs the
+// same plan, so pass i is the same pass in each; an empty `sum` takes `part`'s passes.
+void AddPassTimes(const RenderedFrame& part, RenderedFrame& sum);
+
 // Receives each band cut to its own rows (width × band.rows; its passes' timings summed over
 // its windows, its raster and shadow counters its first window's), in order from the top.
 using BandSink = std::function<void(const RenderedFrame& rows, const FrameBand& band)>;
