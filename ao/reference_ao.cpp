@@ -203,8 +203,10 @@ ReferenceAoConstants MakeReferenceAoConstants(const raster::Camera& camera, cons
   k.ortho = camera.orthographic;
   k.seed = FoldSeed(options.seed);
   k.rays = std::max(options.rays, 1);
-  k.windowX = camera.windowX, k.windowY = camera.windowY;
-  k.frameWidth = raster::FrameWidth(camera), k.frameHeight = raster::FrameHeight(camera);
+  if (raster::IsWindow(camera)) {  // else the G-buffer is the frame (its size, not the camera's)
+    k.windowX = camera.windowX, k.windowY = camera.windowY;
+    k.frameWidth = raster::FrameWidth(camera), k.frameHeight = raster::FrameHeight(camera);
+  }
   return k;
 }
 

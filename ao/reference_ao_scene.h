@@ -34,7 +34,8 @@ struct ReferenceAoConstants {
   uint32_t seed = 0;
   int rays = 1;
   // Where the G-buffer lies in its frame (raster/camera.h windows): rays and per-pixel seeds
-  // are the frame's, so a frame rendered band by band gets the same rays.
+  // are the frame's, so a frame rendered band by band gets the same rays. frameWidth 0: the
+  // G-buffer is the whole frame.
   int windowX = 0, windowY = 0, frameWidth = 0, frameHeight = 0;
 };
 ReferenceAoConstants MakeReferenceAoConstants(const raster::Camera& camera, const ReferenceAoOptions& options);
