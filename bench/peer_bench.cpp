@@ -22,6 +22,7 @@
 #include <map>
 #include <memory>
 #include <stdexcept>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -226,7 +227,7 @@ const EmbreeSetup& Embree(int molecule) {
 
 // ---- the checks that make it the same picture ------------------------------------------
 
-void WriteImage(const char* dir, const std::string& name, const std::vector<float>& rgba) {
+void WriteImage(const char* dir, const std::string& name, std::span<const float> rgba) {
   std::vector<uint8_t> px(rgba.size());
   for (size_t i = 0; i < rgba.size(); ++i) px[i] = effects::LinearToSrgb8(rgba[i]);
   io::WritePng(std::string(dir) + "/" + name + ".png", kWidth, kHeight, 4, px);

@@ -210,8 +210,11 @@ void FrameSink::PrintLastFrame() const {
   std::printf("frame: %.2f ms", frame_.totalMs);
   if (rendered_ > 1) std::printf(" (best of %d: %.2f ms, mean %.2f ms)", rendered_, bestMs_, sumMs_ / rendered_);
   std::printf(" [");
-  for (size_t i = 0; i < frame_.passes.size(); ++i)
-    std::printf("%s%s %.2f", i ? ", " : "", frame_.passes[i].name.c_str(), frame_.passes[i].durationMs);
+  for (size_t i = 0; i < frame_.passes.size(); ++i) {
+    const effects::PassTiming& p = frame_.passes[i];
+    std::printf("%s%s%s %.2f", i ? ", " : "", p.name.c_str(), p.inGBufferTiles ? " (in gbuffer tiles)" : "",
+                p.durationMs);
+  }
   std::printf("]\n");
 }
 

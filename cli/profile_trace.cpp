@@ -1,5 +1,6 @@
 #include "cli/profile_trace.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -21,12 +22,14 @@ void ProfileTrace::AddFrame(int index, double startMs, const effects::RenderedFr
     AddComplete(p.name, "pass", startMs + p.startMs, p.durationMs);
     // What each pass read and wrote (the pass list's declarations), shown beside its bar.
     events_.back()["args"] = {{"reads", effects::BufferNames(p.reads)}, {"writes", effects::BufferNames(p.writes)}};
+    if (p.inGBufferTiles) events_.back()["args"]["fused"] = "in gbuffer tiles";
     if (p.name == "gbuffer") {
-      // The raster stages run one after another inside the G-buffer pass.
+      // The raster stages run one after another inside the G-buffer pass; the time its tiles
+      // spent in a fused pass is that pass's bar.
       double t = startMs + p.startMs;
       const raster::FrameStats& s = f.rasterStats;
       const std::pair<const char*, double> stages[] = {
-          {"setup", s.setupMs}, {"binning", s.binningMs}, {"raster", s.rasterMs}};
+          {"setup", s.setupMs}, {"binning", s.binningMs}, {"raster", std::max(s.rasterMs - s.consumerMs, 0.0)}};
       for (const auto& [name, ms] : stages) {
         AddComplete(name, "raster", t, ms);
         t += ms;

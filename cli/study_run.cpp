@@ -102,6 +102,7 @@ Measured MeasurePoint(Method m, const StudyInput& in, const effects::RenderOptio
   std::vector<std::pair<std::string, std::vector<double>>> passes;
   std::vector<double> setup, frame;
   effects::FrameResources res;
+  res.keepGBuffer = m == Method::kShadows;  // Keep reads its coverage
   effects::RenderedFrame f;
   for (int r = 0; r < repeats; ++r)
     for (size_t v = 0; v < in.views.size(); ++v) {

@@ -10,6 +10,7 @@
 #include "effects/color.h"
 #include "effects/pass_list.h"
 #include "effects/passes/frame_context.h"
+#include "effects/shading.h"
 #include "raster/gbuffer.h"
 
 namespace softmol::effects {
@@ -17,6 +18,23 @@ namespace {
 
 // Pixels per task of the sRGB encode: a few 1080p rows, large enough that scheduling is noise.
 constexpr size_t kEncodeGrain = 8192;
+
+// The pass right after the G-buffer can run inside its tiles: it has a tile form, reads nothing
+// but the G-buffer's own channels, and the tiles lie on pixel edges. Only that one pass: any
+// pass after it reads another pass's full-frame result, so it needs the frame in memory anyway.
+bool TileFusable(const std::vector<PlannedPass>& plan, const RenderOptions& o) {
+  if (!o.fuseTiles || plan.size() < 2 || plan[0].id != PassId::kGBuffer) return false;
+  const PassUnit& next = Pass(plan[1].id);
+  return next.perSample && next.prepareTiles && (plan[1].reads & ~(kBufGBuffer | kBufScene)) == 0 &&
+         o.tileSize % o.ssaa == 0 && size_t(o.tileSize) <= kMaxTileSide;
+}
+
+// Some pass from plan[first] on reads one of `buffers`.
+bool LaterPassesRead(const std::vector<PlannedPass>& plan, size_t first, uint64_t buffers) {
+  for (size_t i = first; i < plan.size(); ++i)
+    if (plan[i].reads & buffers) return true;
+  return false;
+}
 
 }  // namespace
 
@@ -65,15 +83,31 @@ void RenderFrame(const raster::PrimitiveScene& scene, const raster::Camera& came
   FrameResources local;
   FrameResources& res = resources ? *resources : local;
   res.ao.clear();
-  FrameContext context{scene, cam, o, plan, res, f, {}, false};
+  FrameContext context{scene, cam, o, plan, res, f, {}, false, {}};
 
+  const bool fused = TileFusable(plan, o);
+  if (fused) {
+    Pass(plan[1].id).prepareTiles(context);
+    context.tileHook.writeFrame = res.keepGBuffer || LaterPassesRead(plan, 2, kBufGBuffer);
+  }
   Clock::time_point passStart = t0;
-  for (const PlannedPass& pass : plan) {
+  for (size_t i = 0; i < plan.size(); ++i) {
+    const PlannedPass& pass = plan[i];
+    if (fused && i == 1) continue;  // ran inside the G-buffer pass; timed with it below
     context.note.clear();
     Pass(pass.id).run(context);
     const Clock::time_point passEnd = Clock::now();
-    f.passes.push_back({pass.name + context.note, MsBetween(t0, passStart), MsBetween(passStart, passEnd),
-                        pass.reads, pass.writes});
+    double ms = MsBetween(passStart, passEnd);
+    if (fused && i == 0) {
+      // The G-buffer pass's wall time, split by the CPU time its tiles spent drawing and in the
+      // fused pass (raster::FrameStats::consumerMs).
+      const double inTiles = std::min(f.rasterStats.consumerMs, ms);
+      f.passes.push_back({pass.name, MsBetween(t0, passStart), ms - inTiles, pass.reads, pass.writes});
+      f.passes.push_back({plan[1].name, MsBetween(t0, passStart) + ms - inTiles, inTiles, plan[1].reads,
+                          plan[1].writes, /*inGBufferTiles=*/true});
+    } else {
+      f.passes.push_back({pass.name + context.note, MsBetween(t0, passStart), ms, pass.reads, pass.writes});
+    }
     passStart = passEnd;
   }
   if (!o.color) f.rgba.clear();

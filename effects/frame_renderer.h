@@ -47,6 +47,9 @@ struct RenderOptions {
   bool color = true;                     // false: only the AOVs are wanted (no shading pass)
   uint32_t aovs = 0;                     // Aov bits
   int tileSize = 32;
+  // Run the pass after the G-buffer inside its tiles where it can (the fused tile pipeline,
+  // effects/frame_renderer.cpp): the same bytes either way, false only to time the passes apart.
+  bool fuseTiles = true;
   ShadingOptions shading;
   AoMode ao = AoMode::kNone;
   ao::BakeOptions bake;           // kBaked
@@ -81,6 +84,9 @@ struct PassTiming {
   std::string name;
   double startMs = 0, durationMs = 0;  // from the start of the frame
   uint64_t reads = 0, writes = 0;      // FrameBuffer bits (effects/pass_list.h)
+  // Ran inside the G-buffer pass's tiles (the fused tile pipeline): its time is its share of
+  // the tiles' CPU time, and the G-buffer pass's is the rest.
+  bool inGBufferTiles = false;
 };
 
 // Output-resolution results, top row first (file order).
@@ -101,7 +107,10 @@ struct RenderedFrame {
 // loop (--repeat, trajectories) does not allocate. Optional.
 struct FrameResources {
   raster::FrameWorkspace workspace;
+  // Written only where a pass after the G-buffer's own tiles reads it (the fused tile pipeline
+  // shades tiles without it), or when `keepGBuffer` asks for it.
   raster::GBuffer gbuffer;
+  bool keepGBuffer = false;  // the caller reads `gbuffer` after the frame
   ao::OccupancyPyramid pyramid;  // rebuilt only when the scene moved
   ao::AoAtlas atlas;             // baked AO, re-baked only when the scene or bake options change
   uint64_t atlasKey = 0;

@@ -96,6 +96,10 @@ struct PassUnit {
   uint64_t writes;                            // FrameBuffer bits (the G-buffer's are pruned)
   void (*run)(FrameContext&);                 // the CPU body
   io::ParamTable<RenderOptions> (*params)();  // the options it reads (may be empty)
+  // The fused form of a per-sample pass that reads only G-buffer channels: readies the pass to
+  // run on each tile inside the G-buffer pass (sets FrameContext::tileHook's consumer) instead
+  // of running `run` after it. Null when the pass has no such form.
+  void (*prepareTiles)(FrameContext&) = nullptr;
 };
 
 // Every unit, in run order (PassRegistry()[i].id == PassId(i)).

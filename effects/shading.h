@@ -10,7 +10,9 @@
 
 #include <glm/vec3.hpp>
 
+#include "effects/shading_kernel.h"
 #include "raster/camera.h"
+#include "raster/frame.h"
 #include "raster/gbuffer.h"
 #include "raster/primitives.h"
 
@@ -89,6 +91,29 @@ void ShadeAndResolve(const raster::GBuffer& g, int ssaa, const ShadingOptions& o
 // depth cue or the near-plane lightening is on.
 void ShadeAndResolve(const raster::GBuffer& g, int ssaa, const ShadingOptions& options,
                      const Backdrop& backdrop, const ShadeInputs& inputs, std::span<float> rgba);
+
+// The fused tile form of ShadeAndResolve (effects/frame_renderer.cpp): shades and resolves each
+// tile of samples as the G-buffer pass hands it over (raster::TileHook), while it is in cache,
+// giving its pixels of `rgba` (width × height pixels, the whole frame's) the same bytes
+// ShadeAndResolve gives them. Tiles lie on pixel edges (multiples of ssaa) and are at most
+// kMaxTileSide samples wide; the inputs must be TileShadable. Safe to call on disjoint tiles
+// in parallel.
+inline constexpr int kMaxTileSsaa = 4;
+inline constexpr size_t kMaxTileSide = 128;
+// True when the inputs need no other pass's full-frame buffer (no AO, shadow, outline or halo).
+bool TileShadable(const ShadeInputs& inputs);
+class TileShader {
+ public:
+  TileShader(const ShadingOptions& options, const Backdrop& backdrop, const ShadeInputs& inputs, int ssaa,
+             int width, int height, std::span<float> rgba);
+  void operator()(const raster::TileSamples& tile) const;
+
+ private:
+  ShadeConstants constants_;
+  int ssaa_, width_, height_;
+  bool readsDepth_;
+  std::span<float> rgba_;
+};
 
 // The unit light directions: the key light, Blinn's half vector for a viewer along +Z in eye
 // space, and the fill light. Using the constant view vector (as for a distant viewer) keeps

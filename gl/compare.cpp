@@ -211,6 +211,7 @@ BackendReport CompareBackends(FrameRenderer& renderer, const raster::PrimitiveSc
                               const raster::Camera& camera, const effects::RenderOptions& options) {
   BackendReport r;
   effects::FrameResources cpuResources;
+  cpuResources.keepGBuffer = true;
   effects::RenderFrame(scene, camera, options, r.cpu, &cpuResources);
   raster::GBuffer glSamples;
   renderer.RenderFrame(scene, camera, options, r.gl, &glSamples);

@@ -11,22 +11,24 @@
 #include <span>
 #include <string>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include "common/binning.h"
 #include "common/repeats.h"
 #include "common/check.h"
+#include "common/stream_copy.h"
 #include "common/timer.h"
 #include "io/error.h"
 #include "raster/detail/setup.h"
 #include "raster/detail/tile.h"
 
 namespace softmol::raster {
+
+// CPU time of one tile in the kernel (and copy-out) and in a TileHook's consumer.
+struct TileCpuTime {
+  double kernelMs = 0, consumerMs = 0;
+};
 
 struct FrameWorkspace::Impl {
   detail::SetupOutput setup;
@@ -35,6 +37,7 @@ struct FrameWorkspace::Impl {
   std::vector<detail::BinEntry> sorted;   // visible primitives, front to back
   std::vector<detail::BinEntry> entries;  // tile lists, concatenated
   std::vector<detail::TileCounters> tileCounters;
+  std::vector<TileCpuTime> tileTimes;      // with a TileHook only
 };
 FrameWorkspace::FrameWorkspace() : impl(std::make_unique<Impl>()) {}
 FrameWorkspace::~FrameWorkspace() = default;
@@ -100,32 +103,11 @@ TileScratch& Scratch(int ts) {
   return s;
 }
 
-// Copies a row to the frame, the whole cache lines it covers with streaming stores: the
-// G-buffer (tens of MB) is far larger than the caches, so reading destination lines for
-// ownership before overwriting them would double the memory traffic. A streaming store to
-// part of a line is far worse than a plain one (the line is read and merged: measured 25×
-// slower), so the partial lines at either end are written plainly.
-void CopyRow(void* dstv, const void* srcv, size_t bytes) {
-  auto* dst = static_cast<char*>(dstv);
-  const auto* src = static_cast<const char*>(srcv);
-#if defined(__SSE2__)
-  constexpr uintptr_t kLine = 64;
-  const size_t head = std::min(bytes, size_t((kLine - (reinterpret_cast<uintptr_t>(dst) & (kLine - 1))) & (kLine - 1)));
-  const size_t body = (bytes - head) & ~size_t(kLine - 1);
-  std::memcpy(dst, src, head);
-  for (size_t i = head; i < head + body; i += 16)
-    _mm_stream_si128(reinterpret_cast<__m128i*>(dst + i), _mm_loadu_si128(reinterpret_cast<const __m128i*>(src + i)));
-  std::memcpy(dst + head + body, src + head + body, bytes - head - body);
-#else
-  std::memcpy(dst, src, bytes);
-#endif
-}
-
 template <class T>
 void CopyPlane(const detail::TileView& v, const T* src, Plane<T>& dst, int width) {
   const size_t w = size_t(v.x1 - v.x0);
   for (int y = v.y0; y < v.y1; ++y)
-    CopyRow(dst.data() + size_t(y) * size_t(width) + size_t(v.x0), src + v.Index(v.x0, y),
+    StreamCopy(dst.data() + size_t(y) * size_t(width) + size_t(v.x0), src + v.Index(v.x0, y),
             w * sizeof(T));
 }
 
@@ -145,9 +127,27 @@ void CopyOut(const detail::TileView& v, uint32_t ch, GBuffer& g) {
   }
   if (ch & kLine) CopyPlane(v, v.line, g.line, g.width);
   if (ch & kCapped) CopyPlane(v, v.capped, g.capped, g.width);
-#if defined(__SSE2__)
-  _mm_sfence();  // streaming stores are weakly ordered: publish before the task ends
-#endif
+  StreamFence();
+}
+
+TileSamples Samples(const detail::TileView& v, uint32_t ch) {
+  TileSamples t;
+  t.x0 = v.x0, t.y0 = v.y0, t.x1 = v.x1, t.y1 = v.y1, t.stride = v.stride, t.channels = ch;
+  t.depth = v.depth;
+  if (ch & kNormal) t.normalX = v.normalX, t.normalY = v.normalY, t.normalZ = v.normalZ;
+  if (ch & kBaseColor) t.baseColor = v.baseColor;
+  if (ch & kPrimitiveId) t.primitiveId = v.primitiveId;
+  if (ch & kSurfaceCoord) t.surfaceU = v.surfaceU, t.surfaceV = v.surfaceV, t.surfaceW = v.surfaceW;
+  if (ch & kLine) t.line = v.line;
+  if (ch & kCapped) t.capped = v.capped;
+  return t;
+}
+
+// rasterMs split by the CPU time the tiles spent in the kernel and in the hook's consumer.
+double ConsumerShareOf(double rasterMs, const std::vector<TileCpuTime>& times) {
+  double kernel = 0, consumer = 0;
+  for (const TileCpuTime& t : times) kernel += t.kernelMs, consumer += t.consumerMs;
+  return kernel + consumer > 0 ? rasterMs * consumer / (kernel + consumer) : 0.0;
 }
 
 bool FiniteNonNegative(float v) { return std::isfinite(v) && v >= 0.0f; }
@@ -232,7 +232,8 @@ bool ValidFrameOptions(const FrameOptions& o) {
 }
 
 FrameStats RenderGBuffer(const PrimitiveScene& scene, const Camera& camera,
-                         const FrameOptions& options, GBuffer& out, FrameWorkspace* workspace) {
+                         const FrameOptions& options, GBuffer& out, FrameWorkspace* workspace,
+                         const TileHook* hook) {
   SOFTMOL_CHECK(camera.width > 0 && camera.height > 0);
   SOFTMOL_CHECK(options.tileSize >= 8 && options.tileSize <= 128 &&
                 std::has_single_bit(unsigned(options.tileSize)));
@@ -266,13 +267,16 @@ FrameStats RenderGBuffer(const PrimitiveScene& scene, const Camera& camera,
   const auto t2 = Clock::now();
 
   // ---- raster: one task per tile, disjoint pixels, no locks ----
-  if (out.width != camera.width || out.height != camera.height ||
-      out.channels != (options.channels | kDepth))
+  const bool writeFrame = !hook || hook->writeFrame;
+  const bool consume = hook && hook->consume;
+  if (writeFrame && (out.width != camera.width || out.height != camera.height ||
+                     out.channels != (options.channels | kDepth)))
     out.Resize(camera.width, camera.height, options.channels, /*clear=*/false);  // CopyOut writes every sample
   ws.tileCounters.assign(nTiles, {});
+  ws.tileTimes.assign(consume ? nTiles : 0, {});
   const detail::PrimArrays prims{ws.setup.spheres.data(), ws.setup.cylinders.data(),
                                  ws.setup.ellipsoids.data()};
-  const uint32_t ch = out.channels;
+  const uint32_t ch = options.channels | kDepth;
   tbb::parallel_for(tbb::blocked_range<size_t>(0, nTiles, 1), [&](const auto& range) {
     // The kernel works in a tile-local buffer (stride = tile width: a few pages, in L1/L2,
     // no TLB misses), copied out to the frame planes once the tile is done.
@@ -286,8 +290,13 @@ FrameStats RenderGBuffer(const PrimitiveScene& scene, const Camera& camera,
       view.stride = view.x1 - view.x0;
       const std::span<const detail::BinEntry> list(ws.entries.data() + ws.tileBins.Begin(t),
                                                    ws.tileBins.Size(t));
+      const Clock::time_point start = consume ? Clock::now() : Clock::time_point{};
       detail::RasterizeTile(fc, prims, list, view, ws.tileCounters[t]);
-      CopyOut(view, ch, out);
+      if (writeFrame) CopyOut(view, ch, out);
+      if (!consume) continue;
+      const Clock::time_point drawn = Clock::now();
+      hook->consume(Samples(view, ch));
+      ws.tileTimes[t] = {MsBetween(start, drawn), MsSince(drawn)};
     }
   });
   for (const detail::TileCounters& k : ws.tileCounters) {
@@ -299,6 +308,7 @@ FrameStats RenderGBuffer(const PrimitiveScene& scene, const Camera& camera,
   stats.setupMs = MsBetween(t0, t1);
   stats.binningMs = MsBetween(t1, t2);
   stats.rasterMs = MsBetween(t2, t3);
+  stats.consumerMs = ConsumerShareOf(stats.rasterMs, ws.tileTimes);
   return stats;
 }
 

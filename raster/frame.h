@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 
 #include "raster/camera.h"
@@ -51,6 +52,36 @@ struct FrameStats {
   uint64_t fragmentsTested = 0;      // lanes run through the ray/quadric test
   uint64_t fragmentsKept = 0;        // lanes that passed the depth test (incl. overdraw)
   uint64_t tilesSkippedByDepth = 0;  // (primitive, tile) pairs skipped by the coarse test
+  // With a TileHook: the part of rasterMs spent in its consumer, rasterMs times the consumer's
+  // share of the tiles' CPU time (the tiles run in parallel, so wall time has no other split).
+  double consumerMs = 0;
+};
+
+// One finished tile of samples, read-only, while it is still in cache: frame samples
+// [x0, x1) × [y0, y1), sample (x, y) at Index(x, y) of each plane; the planes of channels the
+// frame did not ask for are null.
+struct TileSamples {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  int stride = 0;
+  uint32_t channels = 0;
+  const float* depth = nullptr;
+  const float *normalX = nullptr, *normalY = nullptr, *normalZ = nullptr;
+  const uint32_t* baseColor = nullptr;
+  const uint32_t* primitiveId = nullptr;
+  const float *surfaceU = nullptr, *surfaceV = nullptr, *surfaceW = nullptr;
+  const float* line = nullptr;
+  const float* capped = nullptr;
+  size_t Index(int x, int y) const { return size_t(y - y0) * size_t(stride) + size_t(x - x0); }
+};
+
+// The fused tile pipeline's entry (effects/frame_renderer.cpp): passes that read only a
+// sample's own G-buffer values run on each tile as soon as it is drawn, from the task that drew
+// it (tiles in parallel, each once), instead of on the whole frame from memory afterwards.
+struct TileHook {
+  std::function<void(const TileSamples&)> consume;
+  // False when no one reads the full-frame G-buffer: `out` is then left as it was, and the
+  // frame never goes through memory.
+  bool writeFrame = true;
 };
 
 // Buffers reused from frame to frame (setup constants, bins). Optional: without one,
@@ -69,10 +100,11 @@ class FrameWorkspace {
 // boxes are inclusive, so their last pixel, 32767, fits.
 inline constexpr int kMaxFrameSide = 32768;
 
-// Renders `scene` into `out` (resized to camera.width × camera.height). Threads: whatever
-// the current TBB arena / global_control allows.
+// Renders `scene` into `out` (resized to camera.width × camera.height) and hands each tile to
+// `hook` when given. Tile edges lie on multiples of options.tileSize (and the frame's edges).
+// Threads: whatever the current TBB arena / global_control allows.
 FrameStats RenderGBuffer(const PrimitiveScene& scene, const Camera& camera,
                          const FrameOptions& options, GBuffer& out,
-                         FrameWorkspace* workspace = nullptr);
+                         FrameWorkspace* workspace = nullptr, const TileHook* hook = nullptr);
 
 }  // namespace softmol::raster

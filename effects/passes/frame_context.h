@@ -8,6 +8,7 @@
 
 #include "effects/frame_renderer.h"
 #include "effects/pass_list.h"
+#include "raster/frame.h"
 
 namespace softmol::effects {
 
@@ -20,6 +21,9 @@ struct FrameContext {
   RenderedFrame& frame;
   std::string note;        // appended to the running pass's profile name, e.g. " (reused)"
   bool haloReady = false;  // the halo volume holds something to march through
+  // What the G-buffer pass hands each tile to: the consumer of the pass fused into its tiles
+  // (PassUnit::prepareTiles), empty when none is.
+  raster::TileHook tileHook;
 
   size_t Samples() const { return size_t(res.gbuffer.width) * size_t(res.gbuffer.height); }
 };

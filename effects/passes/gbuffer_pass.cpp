@@ -16,7 +16,8 @@ void RunGBuffer(FrameContext& c) {
   fo.contourDepthAware = o.contourDepthAware;
   fo.contourDepthScale = o.contourDepthScale;
   fo.nearClip = o.nearClip;
-  c.frame.rasterStats = raster::RenderGBuffer(c.scene, c.camera, fo, c.res.gbuffer, &c.res.workspace);
+  const raster::TileHook* hook = c.tileHook.consume ? &c.tileHook : nullptr;
+  c.frame.rasterStats = raster::RenderGBuffer(c.scene, c.camera, fo, c.res.gbuffer, &c.res.workspace, hook);
 }
 
 io::ParamTable<RenderOptions> GBufferParams() {
@@ -28,13 +29,18 @@ io::ParamTable<RenderOptions> GBufferParams() {
       RealParam<RenderOptions>("contours", [](auto& o) -> auto& { return o.contourWidth; }, {0.0, 100.0}, "Å",
                                "Contour lines around atoms and bonds, WIDTH Å (Tarini §5.1); 0 = off, 0.3 when given alone",
                                "gbuffer"),
+      ChoiceParam<RenderOptions>("tile-pipeline", [](auto& o) -> auto& { return o.fuseTiles; },
+                                 std::vector<std::pair<std::string, bool>>{{"fused", true}, {"passes", false}},
+                                 "fused: shade each raster tile while it is in cache where no later pass needs the "
+                                 "whole G-buffer; passes: every pass over the whole frame (same image)",
+                                 "gbuffer"),
       SwitchParam<RenderOptions>("contour-depth-aware", [](auto& o) -> auto& { return o.contourDepthAware; },
                                  "Thin contour lines where the depth step behind them is small", "gbuffer"),
       RealParam<RenderOptions>("near-clip", [](auto& o) -> auto& { return o.nearClip; }, {0.0, 1e9}, "Å",
                                "Cut the molecule at this distance from the eye, capping cut atoms (Tarini §5.3); 0 = off",
                                "gbuffer"),
   };
-  t[1].implicitValue = "0.3";
+  t[1].implicitValue = "0.3";  // --contours
   return t;
 }
 

@@ -18,6 +18,16 @@ void RunShading(FrameContext& c) {
   ShadeAndResolve(c.res.gbuffer, o.ssaa, o.shading, Backdrop{o.background, o.transparent}, in, f.rgba);
 }
 
+// The fused form: the shading and resolve of each tile as the G-buffer pass draws it.
+void PrepareShadingTiles(FrameContext& c) {
+  const RenderOptions& o = c.options;
+  const ShadeInputs in = MakeShadeInputs(o, c.scene, c.camera);
+  RenderedFrame& f = c.frame;
+  f.rgba.resize(4 * size_t(f.width) * size_t(f.height));  // every element is written: no need to clear
+  c.tileHook.consume = TileShader(o.shading, Backdrop{o.background, o.transparent}, in, o.ssaa, f.width, f.height,
+                                  f.rgba);
+}
+
 bool ColorWanted(const RenderOptions& o) { return o.color; }
 
 uint64_t ShadingReads(const RenderOptions& o) {
@@ -69,6 +79,6 @@ io::ParamTable<RenderOptions> ShadingParams() {
 }  // namespace
 
 extern const PassUnit kShadingPass = {PassId::kShading, "shading", "", /*perSample=*/true, /*bandBorder=*/0, ColorWanted,
-                                      ShadingReads, kBufColor, RunShading, ShadingParams};
+                                      ShadingReads, kBufColor, RunShading, ShadingParams, PrepareShadingTiles};
 
 }  // namespace softmol::effects

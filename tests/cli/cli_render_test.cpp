@@ -128,7 +128,10 @@ TEST(CliRender, ProfileListsFramesAndPasses) {
     const std::string name = e["name"];
     if (name == "frame") ++frames;
     if (name == "gbuffer") ++gbuffer;
-    if (name == "shading") ++shading;
+    if (name == "shading") {
+      ++shading;
+      EXPECT_EQ(e["args"].value("fused", ""), "in gbuffer tiles") << "no later pass reads the G-buffer";
+    }
     if (e["ph"] == "C") ++counters;
   }
   EXPECT_EQ(frames, 3u);

@@ -2,8 +2,11 @@
 // unset, so two promises carry the bytes: Resize with clearing sets exactly the samples a plane
 // gains to 0 and keeps the rest, and the rasterizer writes every sample of every plane it asked
 // for (a buffer full of garbage comes back equal to a fresh render). A window of a frame
-// (raster/camera.h) renders the frame's own samples there.
+// (raster/camera.h) renders the frame's own samples there. A TileHook sees every sample exactly
+// once, with the values the frame gets.
 #include <gtest/gtest.h>
+
+#include <mutex>
 
 #include <cmath>
 #include <cstring>
@@ -61,6 +64,49 @@ GBuffer Crop(const GBuffer& g, int x0, int y0, int w, int h) {
   copy(g.baseColor, c.baseColor), copy(g.primitiveId, c.primitiveId), copy(g.surfaceU, c.surfaceU);
   copy(g.surfaceV, c.surfaceV), copy(g.surfaceW, c.surfaceW), copy(g.line, c.line), copy(g.capped, c.capped);
   return c;
+}
+
+TEST(GBuffer, ATileHookSeesEverySampleOnceWithTheFramesValues) {
+  const test::NamedScene s = test::RandomBallsAndSticks(3, 40, 101, 67, /*ortho=*/false);
+  FrameOptions o;
+  o.tileSize = 16;
+  o.channels = kDepth | kNormal | kBaseColor | kPrimitiveId | kLine;
+  o.contourWidth = 0.2f;
+  GBuffer frame;
+  RenderGBuffer(s.scene, s.camera, o, frame);
+
+  for (bool writeFrame : {true, false}) {
+    GBuffer seen;  // rebuilt from the tiles the hook is handed
+    seen.Resize(101, 67, o.channels);
+    std::vector<int> visits(101 * 67, 0);
+    std::mutex m;
+    TileHook hook;
+    hook.writeFrame = writeFrame;
+    hook.consume = [&](const TileSamples& t) {
+      std::lock_guard<std::mutex> lock(m);
+      EXPECT_EQ(t.x0 % 16, 0);
+      EXPECT_EQ(t.y0 % 16, 0);
+      EXPECT_EQ(t.surfaceU, nullptr) << "a channel not asked for has no plane";
+      for (int y = t.y0; y < t.y1; ++y)
+        for (int x = t.x0; x < t.x1; ++x) {
+          const size_t i = seen.Index(x, y), k = t.Index(x, y);
+          ++visits[i];
+          seen.depth[i] = t.depth[k], seen.line[i] = t.line[k];
+          seen.normalX[i] = t.normalX[k], seen.normalY[i] = t.normalY[k], seen.normalZ[i] = t.normalZ[k];
+          seen.baseColor[i] = t.baseColor[k], seen.primitiveId[i] = t.primitiveId[k];
+        }
+    };
+    GBuffer out;
+    const FrameStats stats = RenderGBuffer(s.scene, s.camera, o, out, nullptr, &hook);
+    for (int v : visits) ASSERT_EQ(v, 1);
+    EXPECT_EQ(test::GBufferBytes(seen), test::GBufferBytes(frame));
+    EXPECT_EQ(out.width, writeFrame ? 101 : 0);
+    if (writeFrame) {
+      EXPECT_EQ(test::GBufferBytes(out), test::GBufferBytes(frame));
+    }
+    EXPECT_GE(stats.consumerMs, 0.0);
+    EXPECT_LE(stats.consumerMs, stats.rasterMs);
+  }
 }
 
 TEST(GBuffer, AWindowRendersTheFramesOwnSamples) {
