@@ -126,7 +126,8 @@ bool ReadsDepth(const ShadeInputs& in) { return in.cueStrength > 0.0f || in.clip
 // The samples are summed in a fixed order, sample rows outer, columns inner, so the tile form
 // and the full-frame form, which lay their samples out differently, give the same bytes.
 template <int kSsaa>
-void ResolvePixelsT(const float* shaded, size_t planeStride, size_t rowStride, size_t pixels, float* out) {
+void ResolvePixelsT(const float* __restrict shaded, size_t planeStride, size_t rowStride, size_t pixels,
+                    float* __restrict out) {
   constexpr float kInv = 1.0f / float(kSsaa * kSsaa);
   const float* plane[4] = {shaded, shaded + planeStride, shaded + 2 * planeStride, shaded + 3 * planeStride};
   for (size_t x = 0; x < pixels; ++x) {

@@ -80,6 +80,18 @@ HWY_INLINE void ShadeSamples(D d, const ShadeConstants& c, const SampleRow& in, 
   const hn::RebindToUnsigned<D> du;
   const hn::RebindToSigned<D> di;
   const V zero = hn::Zero(d), one = hn::Set(d, 1.0f);
+  const auto background =
+      hn::RebindMask(d, hn::Eq(hn::LoadU(du, in.primitiveId + i), hn::Set(du, 0xFFFFFFFFu)));
+  if (!in.outline && !in.halo && hn::AllTrue(d, background)) {
+    // Only backdrop here, and no layer covers it: the selects below would give exactly this
+    // (most vectors of a frame are background, and the three gathers are the kernel's dearest
+    // step).
+    hn::StoreU(hn::Set(d, c.backdropR), d, out.r + i);
+    hn::StoreU(hn::Set(d, c.backdropG), d, out.g + i);
+    hn::StoreU(hn::Set(d, c.backdropB), d, out.b + i);
+    hn::StoreU(hn::Set(d, c.backdropA), d, out.a + i);
+    return;
+  }
   const V nx = hn::LoadU(d, in.normalX + i);
   const V ny = hn::LoadU(d, in.normalY + i);
   const V nz = hn::LoadU(d, in.normalZ + i);
@@ -118,8 +130,6 @@ HWY_INLINE void ShadeSamples(D d, const ShadeConstants& c, const SampleRow& in, 
     b = MixToward(d, b, c.lineB, w);
   }
 
-  const auto background =
-      hn::RebindMask(d, hn::Eq(hn::LoadU(du, in.primitiveId + i), hn::Set(du, 0xFFFFFFFFu)));
   r = hn::IfThenElse(background, hn::Set(d, c.backdropR), r);
   g = hn::IfThenElse(background, hn::Set(d, c.backdropG), g);
   b = hn::IfThenElse(background, hn::Set(d, c.backdropB), b);
