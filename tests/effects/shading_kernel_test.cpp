@@ -3,8 +3,8 @@
 // target compiled in and supported by this CPU: random normals (facing and not facing the
 // light), colours, background samples, with and without AO, with every compositing input
 // (shadow, contour line, cap, outline, halo, depth cue, near-plane lightening) alone and all
-// together, and a row length (1003) that is no multiple of any vector width, so the one-lane
-// tail runs too.
+// together, runs of background longer than a vector, and a row length (1003) that is no
+// multiple of any vector width, so the one-lane tail runs too.
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -44,6 +44,8 @@ TEST_P(ShadingTwins, SimdMatchesScalarBitForBit) {
     color[i] = uint32_t(rng()) & 0xFFFFFFu;
     id[i] = (rng() % 7 == 0) ? 0xFFFFFFFFu : uint32_t(i);
   }
+  // A run of background longer than any vector (its own fast path), starting off the lanes.
+  for (size_t i = 101; i < 101 + 70; ++i) id[i] = 0xFFFFFFFFu;
   nx[3] = 0.0f, ny[3] = 0.0f, nz[3] = 1.0f;  // exactly towards the viewer
   nx[4] = -0.0f, ny[4] = -1.0f, nz[4] = 0.0f;  // grazing, n·h may be 0
   for (int shininess : {1, 32, 77}) {
@@ -89,6 +91,8 @@ TEST_P(ShadingTwins, CompositingInputsMatchScalarBitForBit) {
     id[i] = background ? 0xFFFFFFFFu : uint32_t(i);
     depth[i] = background ? std::numeric_limits<float>::infinity() : 40.0f + 40.0f * unit(rng);
   }
+  for (size_t i = 200; i < 200 + 70; ++i)  // whole vectors of background (their fast path when nothing covers it)
+    id[i] = 0xFFFFFFFFu, depth[i] = std::numeric_limits<float>::infinity();
   ShadingOptions o;
   o.fill = 0.3f;
   o.aoStrength = 0.7f;
