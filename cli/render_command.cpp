@@ -488,8 +488,11 @@ void RenderImage(const RunPlan& plan, const raster::PrimitiveScene& scene, const
     for (int r = 0; r < repeat; ++r) sink.RenderBands(scene, cam, options, resources, path, plan.bandRows);
     return;
   }
-  for (int r = 0; r < repeat; ++r) sink.Render(scene, cam, options, resources);
-  sink.Write(path, plan.kind, options, behind);
+  // A PNG takes 8-bit pixels: the frame may make them in its tiles instead of linear floats.
+  effects::RenderOptions o = options;
+  o.srgb8 = plan.kind == OutputKind::kPng;
+  for (int r = 0; r < repeat; ++r) sink.Render(scene, cam, o, resources);
+  sink.Write(path, plan.kind, o, behind);
 }
 
 // Trajectory frame k: the camera stays where the topology framed it, so the molecule moves in

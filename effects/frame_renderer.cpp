@@ -74,6 +74,7 @@ void RenderFrame(const raster::PrimitiveScene& scene, const raster::Camera& came
   const Clock::time_point t0 = Clock::now();
   f.passes.clear();
   f.shadowStats = {};
+  f.srgb8.clear();  // made again only by the tiles of this frame
   f.width = camera.width;
   f.height = camera.height;
   const std::vector<PlannedPass> plan = PlanPasses(o);
@@ -121,6 +122,10 @@ void RenderFrame(const raster::PrimitiveScene& scene, const raster::Camera& came
 std::vector<uint8_t> EncodeSrgb8(const RenderedFrame& f, bool withAlpha) {
   const size_t n = size_t(f.width) * size_t(f.height);
   const int nc = withAlpha ? 4 : 3;
+  if (!f.srgb8.empty()) {
+    SOFTMOL_CHECK(f.srgb8.size() == n * size_t(nc) && f.rgba.empty());
+    return std::vector<uint8_t>(f.srgb8.begin(), f.srgb8.end());
+  }
   std::vector<uint8_t> px(n * size_t(nc));
   // Each pixel on its own, so pixels in parallel give the same bytes for any thread count.
   tbb::parallel_for(tbb::blocked_range<size_t>(0, n, kEncodeGrain), [&](const tbb::blocked_range<size_t>& r) {

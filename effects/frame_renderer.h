@@ -50,6 +50,11 @@ struct RenderOptions {
   // Run the pass after the G-buffer inside its tiles where it can (the fused tile pipeline,
   // effects/frame_renderer.cpp): the same bytes either way, false only to time the passes apart.
   bool fuseTiles = true;
+  // The caller writes 8-bit sRGB (a PNG): where the shading runs in the G-buffer's tiles and no
+  // later pass composites into the colour, the tiles make RenderedFrame::srgb8 themselves and
+  // the linear floats are not kept (a quarter of the memory traffic). Set by the caller, not a
+  // user option: EncodeSrgb8 gives the same pixels either way.
+  bool srgb8 = false;
   ShadingOptions shading;
   AoMode ao = AoMode::kNone;
   ao::BakeOptions bake;           // kBaked
@@ -93,6 +98,9 @@ struct PassTiming {
 struct RenderedFrame {
   int width = 0, height = 0;
   Plane<float> rgba;                             // linear, premultiplied alpha, 4 floats a pixel
+  // With RenderOptions::srgb8, where the tiles made them: EncodeSrgb8(*this, transparent)'s
+  // pixels, and then rgba is empty. Otherwise empty.
+  Plane<uint8_t> srgb8;
   std::vector<float> depth;                      // kAovDepth: eye-space Å along the view axis, +inf background
   std::vector<float> normalX, normalY, normalZ;  // kAovNormal: eye space, 0 on background
   std::vector<uint32_t> id;                      // kAovId: primitive id, 0xFFFFFFFF background
@@ -165,7 +173,9 @@ void RenderFrame(const raster::PrimitiveScene& scene, const raster::Camera& came
 RenderedFrame RenderFrame(const raster::PrimitiveScene& scene, const raster::Camera& camera,
                           const RenderOptions& options, FrameResources* resources = nullptr);
 
-// 8-bit sRGB pixels of a frame for PNG output: RGB, or RGBA (straight alpha) when transparent.
+// 8-bit sRGB pixels of a frame for PNG output: RGB, or RGBA (straight alpha) when transparent;
+// the frame's own srgb8 when its tiles made them (it must then have been rendered with
+// transparent == withAlpha), else encoded from rgba.
 std::vector<uint8_t> EncodeSrgb8(const RenderedFrame& frame, bool withAlpha);
 
 }  // namespace softmol::effects

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include <glm/geometric.hpp>
 
@@ -213,11 +214,14 @@ bool TileShadable(const ShadeInputs& inputs) {
 }
 
 TileShader::TileShader(const ShadingOptions& options, const Backdrop& backdrop, const ShadeInputs& inputs,
-                       int ssaa, int width, int height, std::span<float> rgba)
-    : ssaa_(ssaa), width_(width), height_(height), readsDepth_(ReadsDepth(inputs)), rgba_(rgba) {
+                       int ssaa, int width, int height, const TileColorOutput& out)
+    : ssaa_(ssaa), width_(width), height_(height), readsDepth_(ReadsDepth(inputs)), out_(out) {
   SOFTMOL_CHECK(ValidShadeInputs(inputs) && TileShadable(inputs));
   SOFTMOL_CHECK(ssaa >= 1 && ssaa <= kMaxTileSsaa && width > 0 && height > 0);
-  SOFTMOL_CHECK(rgba.size() == 4 * size_t(width) * size_t(height));
+  const size_t pixels = size_t(width) * size_t(height);
+  SOFTMOL_CHECK(out.rgba.empty() || out.rgba.size() == 4 * pixels);
+  SOFTMOL_CHECK(out.srgb8.empty() || out.srgb8.size() == (out.srgb8Alpha ? 4 : 3) * pixels);
+  SOFTMOL_CHECK(!out.rgba.empty() || !out.srgb8.empty());
   constants_ = FrameShadeConstants(options, backdrop, inputs);
 }
 
@@ -235,14 +239,21 @@ void TileShader::operator()(const raster::TileSamples& t) const {
   const SampleRow in{t.normalX, t.normalY, t.normalZ, t.baseColor, t.primitiveId, nullptr, nullptr, t.line,
                      t.capped, nullptr, nullptr, readsDepth_ ? t.depth : nullptr};
   ShadeSampleRow(constants_, in, n, Planes(shaded.data(), n));
-  // Each pixel row is resolved in cache, then streamed out (the image is far larger than the
-  // caches, and the encoder reads it from memory whatever the order).
+  // Each pixel row is resolved (and encoded) in cache, then copied out; the float image is far
+  // larger than the caches, so it is streamed.
   const size_t pixels = size_t(t.stride / ssaa);
+  const size_t bytesPerPixel = out_.srgb8Alpha ? 4 : 3;
   float resolved[4 * kMaxTileSide];
+  uint8_t encoded[4 * kMaxTileSide];
   for (int py = t.y0 / ssaa; py < t.y1 / ssaa; ++py) {
     const size_t row = size_t(height_ - 1 - py);  // G-buffer rows are bottom-up, files top-down
+    const size_t first = row * size_t(width_) + size_t(t.x0 / ssaa);
     ResolvePixels(&shaded[t.Index(t.x0, py * ssaa)], n, size_t(t.stride), pixels, ssaa, resolved);
-    StreamCopy(&rgba_[4 * (row * size_t(width_) + size_t(t.x0 / ssaa))], resolved, 4 * pixels * sizeof(float));
+    if (!out_.rgba.empty()) StreamCopy(&out_.rgba[4 * first], resolved, 4 * pixels * sizeof(float));
+    if (!out_.srgb8.empty()) {
+      EncodeSrgb8Pixels(resolved, pixels, out_.srgb8Alpha, encoded);
+      std::memcpy(&out_.srgb8[bytesPerPixel * first], encoded, bytesPerPixel * pixels);
+    }
   }
   StreamFence();
 }

@@ -94,25 +94,32 @@ void ShadeAndResolve(const raster::GBuffer& g, int ssaa, const ShadingOptions& o
 
 // The fused tile form of ShadeAndResolve (effects/frame_renderer.cpp): shades and resolves each
 // tile of samples as the G-buffer pass hands it over (raster::TileHook), while it is in cache,
-// giving its pixels of `rgba` (width × height pixels, the whole frame's) the same bytes
-// ShadeAndResolve gives them. Tiles lie on pixel edges (multiples of ssaa) and are at most
+// giving its pixels of the output (width × height pixels, the whole frame's) the same bytes
+// ShadeAndResolve gives them (and EncodeSrgb8Pixels then gives those). Tiles lie on pixel edges (multiples of ssaa) and are at most
 // kMaxTileSide samples wide; the inputs must be TileShadable. Safe to call on disjoint tiles
 // in parallel.
 inline constexpr int kMaxTileSsaa = 4;
 inline constexpr size_t kMaxTileSide = 128;
 // True when the inputs need no other pass's full-frame buffer (no AO, shadow, outline or halo).
 bool TileShadable(const ShadeInputs& inputs);
+// Where the tiles' pixels go (either or both): linear premultiplied RGBA floats, 4 a pixel, and
+// 8-bit sRGB, 3 bytes a pixel or 4 with alpha (EncodeSrgb8Pixels' bytes).
+struct TileColorOutput {
+  std::span<float> rgba;
+  std::span<uint8_t> srgb8;
+  bool srgb8Alpha = false;
+};
 class TileShader {
  public:
   TileShader(const ShadingOptions& options, const Backdrop& backdrop, const ShadeInputs& inputs, int ssaa,
-             int width, int height, std::span<float> rgba);
+             int width, int height, const TileColorOutput& out);
   void operator()(const raster::TileSamples& tile) const;
 
  private:
   ShadeConstants constants_;
   int ssaa_, width_, height_;
   bool readsDepth_;
-  std::span<float> rgba_;
+  TileColorOutput out_;
 };
 
 // The unit light directions: the key light, Blinn's half vector for a viewer along +Z in eye

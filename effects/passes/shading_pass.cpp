@@ -18,14 +18,29 @@ void RunShading(FrameContext& c) {
   ShadeAndResolve(c.res.gbuffer, o.ssaa, o.shading, Backdrop{o.background, o.transparent}, in, f.rgba);
 }
 
-// The fused form: the shading and resolve of each tile as the G-buffer pass draws it.
+// The fused form: the shading and resolve of each tile as the G-buffer pass draws it, into the
+// 8-bit pixels alone when the caller writes those and no later pass composites into the colour.
 void PrepareShadingTiles(FrameContext& c) {
   const RenderOptions& o = c.options;
   const ShadeInputs in = MakeShadeInputs(o, c.scene, c.camera);
+  bool bytesOnly = o.srgb8;
+  for (const PlannedPass& p : c.plan)
+    if (p.id != PassId::kShading && (p.writes & kBufColor) != 0) bytesOnly = false;  // the object halos
   RenderedFrame& f = c.frame;
-  f.rgba.resize(4 * size_t(f.width) * size_t(f.height));  // every element is written: no need to clear
+  const size_t pixels = size_t(f.width) * size_t(f.height);
+  TileColorOutput out;
+  // Every element is written: no need to clear.
+  if (bytesOnly) {
+    out.srgb8Alpha = o.transparent;
+    f.rgba.clear();
+    f.srgb8.resize((o.transparent ? 4 : 3) * pixels);
+    out.srgb8 = f.srgb8;
+  } else {
+    f.rgba.resize(4 * pixels);
+    out.rgba = f.rgba;
+  }
   c.tileHook.consume = TileShader(o.shading, Backdrop{o.background, o.transparent}, in, o.ssaa, f.width, f.height,
-                                  f.rgba);
+                                  out);
 }
 
 bool ColorWanted(const RenderOptions& o) { return o.color; }

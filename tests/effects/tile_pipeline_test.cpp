@@ -2,7 +2,8 @@
 // shading run inside the G-buffer pass's tiles gives the bytes of the pass-by-pass frame for
 // every supersampling factor, tile size, frame size that does not divide into tiles, and every
 // shading input the G-buffer alone feeds (contour lines, near-plane caps, depth cue, transparent
-// backdrop); it runs only where nothing else needs the whole G-buffer, and the profile says so.
+// backdrop), also as the 8-bit pixels a PNG takes; it runs only where nothing else needs the
+// whole G-buffer, and the profile says so.
 #include <cstring>
 #include <string>
 #include <vector>
@@ -126,6 +127,31 @@ TEST(TilePipeline, TheGBufferIsWrittenForWhoeverReadsIt) {
   EXPECT_TRUE(SameFloats(withAovs.depth, aovPasses.depth));
   EXPECT_TRUE(SameFloats(withAovs.normalZ, aovPasses.normalZ));
   EXPECT_EQ(withAovs.id, aovPasses.id);
+}
+
+TEST(TilePipeline, TilesMakeThe8BitPixelsAPngTakes) {
+  const test::NamedScene s = Scene();
+  for (bool transparent : {false, true})
+    for (int ssaa : {1, 2}) {
+      RenderOptions o;
+      o.transparent = transparent;
+      o.ssaa = ssaa;
+      o.contourWidth = 0.3f;
+      const std::vector<uint8_t> expected = EncodeSrgb8(RenderFrame(s.scene, s.camera, o), transparent);
+      o.srgb8 = true;
+      RenderedFrame f;
+      RenderFrame(s.scene, s.camera, o, f);
+      const std::string what = std::string(transparent ? "transparent" : "opaque") + ", ssaa " + std::to_string(ssaa);
+      EXPECT_TRUE(ShadedInTiles(f)) << what;
+      EXPECT_TRUE(f.rgba.empty()) << what << ": the floats are not kept";
+      EXPECT_EQ(std::vector<uint8_t>(f.srgb8.begin(), f.srgb8.end()), expected) << what;
+      EXPECT_EQ(EncodeSrgb8(f, transparent), expected) << what;
+      // Not fused: the floats as ever, no bytes; the same frame object reused either way.
+      o.fuseTiles = false;
+      RenderFrame(s.scene, s.camera, o, f);
+      EXPECT_TRUE(f.srgb8.empty()) << what;
+      EXPECT_EQ(EncodeSrgb8(f, transparent), expected) << what;
+    }
 }
 
 TEST(TilePipeline, TheProfileSplitsTheGBufferPassTime) {
