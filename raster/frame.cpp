@@ -107,8 +107,7 @@ template <class T>
 void CopyPlane(const detail::TileView& v, const T* src, Plane<T>& dst, int width) {
   const size_t w = size_t(v.x1 - v.x0);
   for (int y = v.y0; y < v.y1; ++y)
-    StreamCopy(dst.data() + size_t(y) * size_t(width) + size_t(v.x0), src + v.Index(v.x0, y),
-            w * sizeof(T));
+    StreamCopy(dst.data() + size_t(y) * size_t(width) + size_t(v.x0), src + v.Index(v.x0, y), w * sizeof(T));
 }
 
 void CopyOut(const detail::TileView& v, uint32_t ch, GBuffer& g) {
