@@ -115,7 +115,7 @@ Image ToImage(const effects::RenderedFrame& f, bool transparent) {
   Image img;
   img.width = f.width, img.height = f.height, img.transparent = transparent;
   const size_t n = size_t(f.width) * size_t(f.height);
-  if (!f.rgba.empty()) {
+  if (!f.rgba.empty() || !f.srgb8.empty()) {
     std::vector<uint8_t> px = effects::EncodeSrgb8(f, transparent);
     if (transparent) {
       img.rgba = std::move(px);
@@ -318,7 +318,7 @@ struct Renderer::Impl {
   std::optional<cli::InputScene> scene;
   effects::FrameResources resources;  // the bake and the pyramid, kept from frame to frame
 
-  void Render(const Molecule::Impl& m, const Options& options);
+  void Render(const Molecule::Impl& m, const Options& options, bool srgb8);
   void Prepare(const Molecule::Impl& m, const Options& options);
 };
 
@@ -349,18 +349,22 @@ void Renderer::Impl::Prepare(const Molecule::Impl& m, const Options& options) {
 
 // A moved molecule renders as a trajectory frame does: the camera that framed the loaded
 // positions, near/far fitted to the frame.
-void Renderer::Impl::Render(const Molecule::Impl& m, const Options& options) {
+// `srgb8`: the caller takes 8-bit pixels (an Image, a PNG), which the frame may then make in its
+// tiles instead of linear floats (effects::RenderOptions::srgb8).
+void Renderer::Impl::Render(const Molecule::Impl& m, const Options& options, bool srgb8) {
   Prepare(m, options);
   std::unique_ptr<tbb::global_control> threads;
   if (args.threads > 0)
     threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(args.threads));
   cli::InputScene& s = *scene;
-  if (!m.moved) return sink->Render(s.drawn.scene, s.camera, s.options, resources);
+  effects::RenderOptions o = s.options;
+  o.srgb8 = srgb8;
+  if (!m.moved) return sink->Render(s.drawn.scene, s.camera, o, resources);
   s.loaded.molecule.x = m.x, s.loaded.molecule.y = m.y, s.loaded.molecule.z = m.z;
   const raster::PrimitiveScene frame = raster::BuildRepresentation(s.loaded.molecule, s.looks.looks, s.rep).scene;
   raster::Camera camera = s.camera;
   cli::FitDepthRange(args, plan->view, frame, camera);
-  sink->Render(frame, camera, s.options, resources);
+  sink->Render(frame, camera, o, resources);
 }
 
 Renderer::Renderer() : impl_(std::make_unique<Impl>()) {}
@@ -370,7 +374,7 @@ Renderer::~Renderer() = default;
 
 Image Renderer::Render(const Molecule& molecule, const Options& options) {
   try {
-    impl_->Render(*molecule.impl_, options);
+    impl_->Render(*molecule.impl_, options, /*srgb8=*/true);
     return ToImage(impl_->sink->frame(), impl_->scene->options.transparent);
   } catch (const io::InputError& e) {
     throw Error(e.what());
@@ -380,7 +384,7 @@ Image Renderer::Render(const Molecule& molecule, const Options& options) {
 void Renderer::RenderToFile(const Molecule& molecule, const std::string& path, const Options& options) {
   try {
     const cli::OutputKind kind = cli::OutputKindOf(path, {path});
-    impl_->Render(*molecule.impl_, options);
+    impl_->Render(*molecule.impl_, options, /*srgb8=*/kind == cli::OutputKind::kPng);
     impl_->sink->Write(path, kind, impl_->scene->options);
   } catch (const io::InputError& e) {
     throw Error(e.what());

@@ -64,6 +64,28 @@ TEST(Api, TransparentRgbaIsTheCommandsRgbaPng) {
   EXPECT_TRUE(img.transparent);
 }
 
+// Shading fused into the G-buffer's tiles makes the 8-bit pixels there: still the command's PNG,
+// and the same pixels as the pass-by-pass frame.
+TEST(Api, PixelsMadeInTheTilesAreTheCommandsPng) {
+  const fs::path dir = ScratchDir("api_tiles");
+  const Molecule mol = Molecule::Load(Data("pept.pdb"));
+  for (bool transparent : {false, true}) {
+    Options options{{"size", "80x60"}, {"ao", "none"}, {"contours", "0.3"}};
+    if (transparent) options.Set("transparent", true);
+    Renderer renderer;
+    const Image img = renderer.Render(mol, options);
+    Options passOptions = options;
+    passOptions.Set("tile-pipeline", "passes");
+    const Image passes = Renderer().Render(mol, passOptions);
+    const std::string flags = std::string(" --size 80x60 --ao none --contours 0.3") + (transparent ? " --transparent" : "");
+    const io::Image8 png = CommandPng("render '" + Data("pept.pdb") + "'" + flags, dir / "cli.png");
+    EXPECT_EQ(img.rgba, passes.rgba) << transparent;
+    EXPECT_EQ(transparent ? img.rgba : Rgb(img), png.pixels) << transparent;
+    renderer.RenderToFile(mol, (dir / "api.png").string(), options);
+    EXPECT_EQ(Slurp(dir / "api.png"), Slurp(dir / "cli.png")) << transparent;
+  }
+}
+
 // The message of the command's one line, without "softmol: ".
 std::string CommandError(const std::string& args) {
   const fs::path dir = ScratchDir("api_error");
