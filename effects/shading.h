@@ -95,9 +95,9 @@ void ShadeAndResolve(const raster::GBuffer& g, int ssaa, const ShadingOptions& o
 // The fused tile form of ShadeAndResolve (effects/frame_renderer.cpp): shades and resolves each
 // tile of samples as the G-buffer pass hands it over (raster::TileHook), while it is in cache,
 // giving its pixels of the output (width × height pixels, the whole frame's) the same bytes
-// ShadeAndResolve gives them (and EncodeSrgb8Pixels then gives those). Tiles lie on pixel edges (multiples of ssaa) and are at most
-// kMaxTileSide samples wide; the inputs must be TileShadable. Safe to call on disjoint tiles
-// in parallel.
+// ShadeAndResolve gives them (and EncodeSrgb8Pixels then gives those). Tiles lie on pixel edges
+// (multiples of ssaa) and are at most kMaxTileSide samples wide; the inputs must be
+// TileShadable. Safe to call on disjoint tiles in parallel.
 inline constexpr int kMaxTileSsaa = 4;
 inline constexpr size_t kMaxTileSide = 128;
 // True when the inputs need no other pass's full-frame buffer (no AO, shadow, outline or halo).
