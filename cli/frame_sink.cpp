@@ -177,7 +177,10 @@ void FrameSink::RenderBands(const raster::PrimitiveScene& scene, const raster::C
   effects::RenderedFrame& sum = frame_;
   sum = {};
   sum.width = camera.width, sum.height = camera.height;
-  effects::RenderBands(scene, camera, options, bandRows, [&](const effects::RenderedFrame& band, const effects::FrameBand&) {
+  // A poster is a PNG: its bands' pixels may be made as bytes in the tiles.
+  effects::RenderOptions o = options;
+  o.srgb8 = true;
+  effects::RenderBands(scene, camera, o, bandRows, [&](const effects::RenderedFrame& band, const effects::FrameBand&) {
     if (tracing_) trace_.AddFrame(rendered_, cursorMs_, band);
     cursorMs_ += band.totalMs;
     const Clock::time_point w0 = Clock::now();

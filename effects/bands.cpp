@@ -41,8 +41,11 @@ std::vector<FrameBand> SplitRows(int height, int bandRows) {
 
 namespace {
 
+// Bytes a pixel of RenderedFrame::srgb8 (made by the tiles with RenderOptions::srgb8).
+size_t Srgb8Bytes(const RenderOptions& o) { return o.transparent ? 4 : 3; }
+
 // Gives `to` the planes `like` has, for a w × h frame.
-void ShapeLike(const RenderedFrame& like, int w, int h, RenderedFrame& to) {
+void ShapeLike(const RenderedFrame& like, int w, int h, size_t srgb8Bytes, RenderedFrame& to) {
   const size_t n = size_t(w) * size_t(h);
   to.width = w, to.height = h;
   const auto shape = [n](const auto& from, auto& plane, size_t perPixel) {
@@ -50,12 +53,14 @@ void ShapeLike(const RenderedFrame& like, int w, int h, RenderedFrame& to) {
     else plane.resize(n * perPixel);
   };
   shape(like.rgba, to.rgba, 4);
+  shape(like.srgb8, to.srgb8, srgb8Bytes);
   shape(like.depth, to.depth, 1), shape(like.normalX, to.normalX, 1), shape(like.normalY, to.normalY, 1);
   shape(like.normalZ, to.normalZ, 1), shape(like.id, to.id, 1), shape(like.ao, to.ao, 1);
 }
 
 // The w × h pixels of `from` at (fromX, fromY) into `to` at (toX, 0); rows top first.
-void CopyBlock(const RenderedFrame& from, int fromX, int fromY, int w, int h, RenderedFrame& to, int toX) {
+void CopyBlock(const RenderedFrame& from, int fromX, int fromY, int w, int h, size_t srgb8Bytes, RenderedFrame& to,
+               int toX) {
   const auto copy = [&](const auto& src, auto& dst, size_t perPixel) {
     if (src.empty()) return;
     const size_t rowValues = size_t(w) * perPixel;
@@ -65,6 +70,7 @@ void CopyBlock(const RenderedFrame& from, int fromX, int fromY, int w, int h, Re
                   rowValues * sizeof(src[0]));
   };
   copy(from.rgba, to.rgba, 4);
+  copy(from.srgb8, to.srgb8, srgb8Bytes);
   copy(from.depth, to.depth, 1), copy(from.normalX, to.normalX, 1), copy(from.normalY, to.normalY, 1);
   copy(from.normalZ, to.normalZ, 1), copy(from.id, to.id, 1), copy(from.ao, to.ao, 1);
 }
@@ -117,10 +123,10 @@ void RenderBands(const raster::PrimitiveScene& scene, const raster::Camera& came
       const int left = std::min(border, x0), right = std::min(border, width - x0 - cols);
       RenderFrame(scene, raster::Window(camera, x0 - left, windowY, left + cols + right, windowRows), o, window, &res);
       res.sameView = true;
-      if (x0 == 0) ShapeLike(window, width, b.rows, band);
+      if (x0 == 0) ShapeLike(window, width, b.rows, Srgb8Bytes(o), band);
       AddTimings(window, x0 == 0, band);
       if (cols == width && above == 0 && below == 0) std::swap(window, band);  // the window is the band
-      else CopyBlock(window, left, above, cols, b.rows, band, x0);
+      else CopyBlock(window, left, above, cols, b.rows, Srgb8Bytes(o), band, x0);
     }
     sink(band, b);
   }

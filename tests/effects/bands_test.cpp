@@ -110,6 +110,29 @@ TEST(Bands, EveryEffectGivesTheWholeFramesBytes) {
   }
 }
 
+// With the 8-bit pixels made in the tiles (a plan whose shading runs fused), bands and the
+// windows they split into stitch those bytes into the whole frame's.
+TEST(Bands, PixelsMadeInTheTilesStitchIntoTheWholeFrames) {
+  test::NamedScene s = test::RandomBallsAndSticks(5, 400, 75, 61, false);
+  raster::FitNearFar(s.camera, s.scene);
+  for (bool transparent : {false, true}) {
+    RenderOptions o;
+    o.transparent = transparent;
+    o.contourWidth = 0.2f;
+    const std::vector<uint8_t> whole = EncodeSrgb8(RenderFrame(s.scene, s.camera, o), transparent);
+    o.srgb8 = true;
+    for (int side : {raster::kMaxFrameSide, 16}) {
+      std::vector<uint8_t> stitched;
+      RenderBands(s.scene, s.camera, o, 7, [&](const RenderedFrame& band, const FrameBand&) {
+        EXPECT_TRUE(band.rgba.empty()) << "made as bytes";
+        const std::vector<uint8_t> px = EncodeSrgb8(band, transparent);
+        stitched.insert(stitched.end(), px.begin(), px.end());
+      }, nullptr, side);
+      EXPECT_EQ(stitched, whole) << "transparent " << transparent << ", windows of " << side;
+    }
+  }
+}
+
 TEST(Bands, OnlyTheSobelOutlinesNeedABorder) {
   RenderOptions o;
   o.shadows = true, o.depthHalos = true, o.ao = AoMode::kCone;
