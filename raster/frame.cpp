@@ -131,7 +131,7 @@ void CopyOut(const detail::TileView& v, uint32_t ch, GBuffer& g) {
 
 TileSamples Samples(const detail::TileView& v, uint32_t ch) {
   TileSamples t;
-  t.x0 = v.x0, t.y0 = v.y0, t.x1 = v.x1, t.y1 = v.y1, t.stride = v.stride, t.channels = ch;
+  t.x0 = v.x0, t.y0 = v.y0, t.x1 = v.x1, t.y1 = v.y1, t.stride = v.stride;
   t.depth = v.depth;
   if (ch & kNormal) t.normalX = v.normalX, t.normalY = v.normalY, t.normalZ = v.normalZ;
   if (ch & kBaseColor) t.baseColor = v.baseColor;

@@ -63,7 +63,6 @@ struct FrameStats {
 struct TileSamples {
   int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
   int stride = 0;
-  uint32_t channels = 0;
   const float* depth = nullptr;
   const float *normalX = nullptr, *normalY = nullptr, *normalZ = nullptr;
   const uint32_t* baseColor = nullptr;
