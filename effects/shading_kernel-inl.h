@@ -172,6 +172,24 @@ inline void ShadeSampleRowImpl(const ShadeConstants& c, const SampleRow& in, siz
   for (; i < count; ++i) ShadeSamples(d1, c, in, i, out);
 }
 
+// Twin of InterleaveRgbaScalar (shading_kernel.cpp).
+template <class D>
+HWY_INLINE void InterleavePixels(D d, const ShadedPlanes& in, size_t i, float* out) {
+  const auto zero = hn::Zero(d);
+  hn::StoreInterleaved4(hn::Add(zero, hn::LoadU(d, in.r + i)), hn::Add(zero, hn::LoadU(d, in.g + i)),
+                        hn::Add(zero, hn::LoadU(d, in.b + i)), hn::Add(zero, hn::LoadU(d, in.a + i)), d,
+                        out + 4 * i);
+}
+
+inline void InterleaveRgbaImpl(const ShadedPlanes& in, size_t count, float* out) {
+  const hn::ScalableTag<float> d;
+  const size_t lanes = hn::Lanes(d);
+  size_t i = 0;
+  for (; i + lanes <= count; i += lanes) InterleavePixels(d, in, i, out);
+  const hn::CappedTag<float, 1> d1;
+  for (; i < count; ++i) InterleavePixels(d1, in, i, out);
+}
+
 }  // namespace softmol::effects::HWY_NAMESPACE
 HWY_AFTER_NAMESPACE();
 #endif  // toggle guard

@@ -13,10 +13,20 @@
 
 namespace softmol::effects {
 HWY_EXPORT(ShadeSampleRowImpl);
+HWY_EXPORT(InterleaveRgbaImpl);
 
 void ShadeSampleRow(const ShadeConstants& c, const SampleRow& in, size_t count,
                     const ShadedRow& out) noexcept {
   HWY_DYNAMIC_DISPATCH(ShadeSampleRowImpl)(c, in, count, out);
+}
+
+void InterleaveRgba(const ShadedPlanes& in, size_t count, float* out) noexcept {
+  HWY_DYNAMIC_DISPATCH(InterleaveRgbaImpl)(in, count, out);
+}
+
+void InterleaveRgbaScalar(const ShadedPlanes& in, size_t count, float* out) noexcept {
+  for (size_t i = 0; i < count; ++i, out += 4)
+    out[0] = 0.0f + in.r[i], out[1] = 0.0f + in.g[i], out[2] = 0.0f + in.b[i], out[3] = 0.0f + in.a[i];
 }
 
 // The order of the steps is the one effects/shading.h documents; the SIMD rows

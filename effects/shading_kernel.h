@@ -63,4 +63,16 @@ void ShadeSampleRow(const ShadeConstants& c, const SampleRow& in, size_t count,
 void ShadeSampleRowScalar(const ShadeConstants& c, const SampleRow& in, size_t count,
                           const ShadedRow& out) noexcept;
 
+// The resolve at one sample per pixel: count shaded samples to RGBA pixels (4 floats each),
+// each channel 0 + s as the resolve's sum of one sample gives it (so −0 becomes +0). The SIMD
+// form interleaves a vector of pixels at a time; InterleaveRgbaScalar is its twin.
+struct ShadedPlanes {  // ShadedRow, read
+  const float* r;
+  const float* g;
+  const float* b;
+  const float* a;
+};
+void InterleaveRgba(const ShadedPlanes& in, size_t count, float* out) noexcept;
+void InterleaveRgbaScalar(const ShadedPlanes& in, size_t count, float* out) noexcept;
+
 }  // namespace softmol::effects

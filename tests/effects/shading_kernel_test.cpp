@@ -126,6 +126,25 @@ TEST_P(ShadingTwins, CompositingInputsMatchScalarBitForBit) {
   }
 }
 
+// The SSAA 1 resolve: the SIMD interleave equals its scalar twin bit for bit (−0 becomes +0 in
+// both), on a count with a one-lane tail; and the scalar twin is the planes' values, 0 + s.
+TEST_P(ShadingTwins, InterleaveMatchesScalarBitForBit) {
+  const size_t n = 1003;
+  std::mt19937 rng(20261203);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::vector<float> planes(4 * n);
+  for (float& v : planes) v = unit(rng);
+  planes[5] = -0.0f, planes[n + 6] = -0.0f, planes[3 * n + 1002] = -0.0f;
+  const ShadedPlanes in{&planes[0], &planes[n], &planes[2 * n], &planes[3 * n]};
+  std::vector<float> simd(4 * n, -1.0f), scalar(4 * n, -2.0f);
+  InterleaveRgba(in, n, simd.data());
+  InterleaveRgbaScalar(in, n, scalar.data());
+  for (size_t i = 0; i < 4 * n; ++i) ASSERT_EQ(Bits(simd[i]), Bits(scalar[i])) << "value " << i;
+  for (size_t i = 0; i < n; ++i)
+    for (size_t c = 0; c < 4; ++c) ASSERT_EQ(Bits(scalar[4 * i + c]), Bits(0.0f + planes[c * n + i])) << i;
+  EXPECT_EQ(Bits(scalar[4 * 5]), Bits(0.0f));
+}
+
 TEST(ShadingKernel, ScalarTwinIsTheShadePixelFormula) {
   ShadingOptions o;
   o.fill = 0.2f;
