@@ -52,6 +52,58 @@ io::ImageFile ToExr(const effects::RenderedFrame& f, bool withColor) {
   return img;
 }
 
+// A poster's file, written band by band from the top as the bands come: a PNG row by row
+// through softmol's stream encoder, an EXR through OpenImageIO's scanlines.
+class BandWriter {
+ public:
+  virtual ~BandWriter() = default;
+  virtual void Add(const effects::RenderedFrame& band) = 0;
+  virtual void Finish() = 0;
+};
+
+class PngBandWriter final : public BandWriter {
+ public:
+  PngBandWriter(const std::string& path, int width, int height, bool transparent)
+      : file_(path), png_(width, height, transparent ? 4 : 3), transparent_(transparent) {
+    png_.Header(bytes_);
+  }
+  void Add(const effects::RenderedFrame& band) override {
+    const std::vector<uint8_t> pixels = effects::EncodeSrgb8(band, transparent_);
+    png_.AddRows(pixels.data(), size_t(band.height), bytes_);
+    Flush();
+  }
+  void Finish() override {
+    png_.Finish(bytes_);
+    Flush();
+    file_.Commit();
+  }
+
+ private:
+  void Flush() {
+    file_.Write(bytes_.data(), bytes_.size());
+    bytes_.clear();
+  }
+  io::TemporaryFile file_;
+  io::PngStreamEncoder png_;
+  bool transparent_;
+  std::vector<uint8_t> bytes_;
+};
+
+class ExrBandWriter final : public BandWriter {
+ public:
+  ExrBandWriter(const std::string& path, int width, int height) : exr_(path, width, height) {}
+  void Add(const effects::RenderedFrame& band) override { exr_.AddRows(ToExr(band, /*withColor=*/true)); }
+  void Finish() override { exr_.Finish(); }
+
+ private:
+  io::ExrStreamWriter exr_;
+};
+
+std::unique_ptr<BandWriter> OpenBandWriter(const std::string& path, int width, int height, bool transparent) {
+  if (OutputKindOf(path) == OutputKind::kExr) return std::make_unique<ExrBandWriter>(path, width, height);
+  return std::make_unique<PngBandWriter>(path, width, height, transparent);
+}
+
 }  // namespace
 
 struct FrameSink::GlMirror {
@@ -169,33 +221,26 @@ void FrameSink::RenderBands(const raster::PrimitiveScene& scene, const raster::C
                             const std::string& path, int bandRows) {
   FinishWrites();
   cursorMs_ = std::max(cursorMs_, MsSince(start_));
-  io::TemporaryFile file(path);  // first, so a bad output path is reported before any band renders
-  io::PngStreamEncoder png(camera.width, camera.height, options.transparent ? 4 : 3);
-  std::vector<uint8_t> bytes;
-  png.Header(bytes);
+  // Opened first, so a bad output path is reported before any band renders.
+  std::unique_ptr<BandWriter> writer = OpenBandWriter(path, camera.width, camera.height, options.transparent);
   // The frame's summary: the bands' pass times added up.
   effects::RenderedFrame& sum = frame_;
   sum = {};
   sum.width = camera.width, sum.height = camera.height;
-  // A poster is a PNG: its bands' pixels may be made as bytes in the tiles.
+  // A PNG poster's bands may make their 8-bit pixels in the tiles; an EXR takes the floats.
   effects::RenderOptions o = options;
-  o.srgb8 = true;
+  o.srgb8 = OutputKindOf(path) == OutputKind::kPng;
   effects::RenderBands(scene, camera, o, bandRows, [&](const effects::RenderedFrame& band, const effects::FrameBand&) {
     if (tracing_) trace_.AddFrame(rendered_, cursorMs_, band);
     cursorMs_ += band.totalMs;
     const Clock::time_point w0 = Clock::now();
-    const std::vector<uint8_t> pixels = effects::EncodeSrgb8(band, options.transparent);
-    png.AddRows(pixels.data(), size_t(band.height), bytes);
-    file.Write(bytes.data(), bytes.size());
-    bytes.clear();
+    writer->Add(band);
     const double ms = MsSince(w0);
     if (tracing_) trace_.AddComplete("write band", "output", cursorMs_, ms);
     cursorMs_ += ms;
     effects::AddPassTimes(band, sum);
   }, &resources);
-  png.Finish(bytes);
-  file.Write(bytes.data(), bytes.size());
-  file.Commit();
+  writer->Finish();
   ++rendered_;
   bestMs_ = std::min(bestMs_, sum.totalMs);
   sumMs_ += sum.totalMs;

@@ -43,9 +43,9 @@ class FrameSink {
   void Write(const std::string& path, OutputKind kind, const effects::RenderOptions& options, bool behind = false);
   // Waits for the write in flight; throws its error.
   void FinishWrites();
-  // One image (CPU backend) rendered in bands of `bandRows` rows, each streamed to the PNG
-  // `path` as it comes (posters, effects/bands.h); the file appears whole once the last band is
-  // in. frame() then holds the passes' times summed over the bands, not the pixels.
+  // One image (CPU backend) rendered in bands of `bandRows` rows, each streamed to the PNG or
+  // EXR `path` as it comes (posters, effects/bands.h); the file appears whole once the last band
+  // is in. frame() then holds the passes' times summed over the bands, not the pixels.
   void RenderBands(const raster::PrimitiveScene& scene, const raster::Camera& camera,
                    const effects::RenderOptions& options, effects::FrameResources& resources, const std::string& path,
                    int bandRows);

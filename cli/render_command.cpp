@@ -353,13 +353,12 @@ raster::Camera FrameCamera(const RenderArgs& a, const std::optional<scene::View>
 }
 
 // A frame renders in one pass of at most 2^28 samples and raster::kMaxFrameSide samples a
-// side, or in bands (posters, effects/bands.h) streamed to a PNG by the CPU backend.
+// side, or in bands (posters, effects/bands.h) streamed to a PNG or EXR by the CPU backend.
 void CheckFrameSize(const RenderArgs& a, const RunPlan& p) {
   const effects::RenderOptions& ro = p.options;
   const int64_t perRow = int64_t(p.size.width) * ro.ssaa * ro.ssaa;
-  const io::SourceLocation why{a.bandRows > 0 ? "--band-rows" : "--size"};
   if (p.bandRows == 0) {
-    const char* inBands = " (larger images render in bands, to a PNG without AOVs)";
+    const char* inBands = " (larger images render in bands, without AOVs)";
     if (perRow * p.size.height > (int64_t(1) << 28))
       throw io::InputError({"--ssaa"}, std::string("size × ssaa² is more than 2^28 samples") + inBands);
     if (int64_t(std::max(p.size.width, p.size.height)) * ro.ssaa > raster::kMaxFrameSide)
@@ -367,12 +366,9 @@ void CheckFrameSize(const RenderArgs& a, const RunPlan& p) {
                                            " samples" + inBands);
     return;
   }
-  if (p.kind != OutputKind::kPng)
-    throw io::InputError(why, "an image rendered in bands is streamed to a PNG; EXR output needs the whole image "
-                              "at once (write .png, or a smaller --size)");
   if (ro.aovs != 0)
-    throw io::InputError({"--aov"}, "AOVs are written as EXR, which needs the whole image at once; an image "
-                                    "rendered in bands (see --band-rows) has none");
+    throw io::InputError({"--aov"}, "an image rendered in bands (see --band-rows) has no AOVs: its bands stream "
+                                    "the colour only (ask for a smaller --size to get them)");
   if (a.backend == "gl")
     throw io::InputError({"--backend"}, "the GL mirror renders whole images; an image rendered in bands (see "
                                         "--band-rows) is the CPU backend's");
@@ -427,9 +423,9 @@ RunPlan PlanRun(const RenderArgs& a) {
   if (!a.turntable.empty()) p.turntable = ParseTurntable(a.turntable, {"--turntable"});
   if (!a.shard.empty()) p.shard = ParseShard(a.shard, {"--shard"});
   if (p.turntable.frames > 0) p.framesPerInput = p.turntable.frames;
-  // Bands when asked for, or by default where the output can take them (a PNG without AOVs,
+  // Bands when asked for, or by default where the output can take them (an image without AOVs,
   // from the CPU backend); CheckFrameSize says what a banded image cannot have.
-  const bool bandable = a.toFiles && p.kind == OutputKind::kPng && p.options.aovs == 0 && a.backend == "cpu";
+  const bool bandable = a.toFiles && p.options.aovs == 0 && a.backend == "cpu";
   if (a.bandRows > 0) p.bandRows = std::min(a.bandRows, p.size.height);
   else if (bandable) p.bandRows = effects::AutomaticBandRows(p.options, p.size.width, p.size.height);
   CheckCombinations(a, p);
@@ -480,7 +476,7 @@ std::vector<size_t> InputFrames(const RenderArgs& a, const RunPlan& plan, const 
 }
 
 // One image to `path`: rendered whole (`repeat` times), then written (behind the next frame,
-// in a sequence); or, for a poster, rendered band by band into its PNG stream.
+// in a sequence); or, for a poster, rendered band by band into its PNG or EXR stream.
 void RenderImage(const RunPlan& plan, const raster::PrimitiveScene& scene, const raster::Camera& cam,
                  const effects::RenderOptions& options, effects::FrameResources& resources, FrameSink& sink,
                  const std::string& path, bool behind, int repeat = 1) {

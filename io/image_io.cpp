@@ -8,6 +8,9 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "io/atomic_file.h"
 #include "io/detail/oiio_loader.h"
@@ -116,46 +119,112 @@ void WritePng(const std::string& path, int width, int height, int channels,
   file.Commit();
 }
 
-void WriteExr(const std::string& path, const ImageFile& image) {
-  const size_t n = size_t(image.width) * size_t(image.height);
-  if (image.width <= 0 || image.height <= 0 || image.channels.empty())
-    throw InputError({path}, "internal error: empty EXR image");
-  const int nc = int(image.channels.size());
-  std::vector<const char*> names;
+// The open output: the temporary the module writes by name, and where the rows have got to.
+struct ExrStreamWriter::Output {
+  const SoftmolOiioApi& api;
+  TemporaryFile file;
+  std::string path;
+  int width, height;
+  std::vector<std::string> names;  // the first band's channels
   std::vector<unsigned char> isU32;
-  int alpha = -1, z = -1;
-  for (int c = 0; c < nc; ++c) {
-    const ImageChannel& ch = image.channels[size_t(c)];
-    if ((!ch.ids.empty() ? ch.ids.size() : ch.values.size()) != n)
-      throw InputError({path}, "internal error: channel " + ch.name + " has the wrong size");
-    names.push_back(ch.name.c_str());
-    isU32.push_back(ch.ids.empty() ? 0 : 1);
-    if (ch.name == "A") alpha = c;
-    if (ch.name == "Z") z = c;
+  void* image = nullptr;  // the module's output, from the first band on
+  int rowsDone = 0;
+  Output(const std::string& p, int w, int h) : api(detail::OiioModule(p)), file(p), path(p), width(w), height(h) {
+    file.CloseForExternalWriter();  // OpenImageIO opens the temporary by name
   }
+  [[noreturn]] void Fail(const char* what, const char* err) const {
+    throw InputError({path}, std::string(what) + err);
+  }
+  void Open(const ImageFile& band);
+  void Check(const ImageFile& band) const;
+};
+
+void ExrStreamWriter::Output::Open(const ImageFile& band) {
+  std::vector<const char*> cnames;
+  int alpha = -1, z = -1;
+  for (const ImageChannel& ch : band.channels) {
+    if (ch.name == "A") alpha = int(names.size());
+    if (ch.name == "Z") z = int(names.size());
+    names.push_back(ch.name);
+    isU32.push_back(ch.ids.empty() ? 0 : 1);
+  }
+  for (const std::string& n : names) cnames.push_back(n.c_str());
   // OpenEXR's writer stamps the current time (capDate) unless DateTime is set; an empty one
   // leaves it out, so the same render gives the same bytes (DESIGN.md, determinism).
   const char* attrNames[] = {"compression", "oiio:ColorSpace", "DateTime"};
   const char* attrValues[] = {"zip", "Linear", ""};
+  const SoftmolOiioWrite w{path.c_str(), file.temporaryPath().c_str(), width, height, int(names.size()),
+                           cnames.data(), isU32.data(), alpha, z, attrNames, attrValues, 3};
+  char err[512] = "";
+  image = api.create(&w, err, sizeof err);
+  if (image == nullptr) Fail("cannot write the image: ", err);
+}
+
+void ExrStreamWriter::Output::Check(const ImageFile& band) const {
+  auto internal = [&](const std::string& why) { throw InputError({path}, "internal error: " + why); };
+  if (band.width != width || band.height <= 0 || band.height > height - rowsDone || band.channels.empty())
+    internal("an EXR band of " + std::to_string(band.width) + "x" + std::to_string(band.height) + " after " +
+             std::to_string(rowsDone) + " of " + std::to_string(height) + " rows");
+  if (image != nullptr && band.channels.size() != names.size()) internal("an EXR band with other channels");
+  const size_t n = size_t(band.width) * size_t(band.height);
+  for (size_t c = 0; c < band.channels.size(); ++c) {
+    const ImageChannel& ch = band.channels[c];
+    if ((!ch.ids.empty() ? ch.ids.size() : ch.values.size()) != n)
+      internal("channel " + ch.name + " has the wrong size");
+    if (image != nullptr && (ch.name != names[c] || (ch.ids.empty() ? 0 : 1) != isU32[c]))
+      internal("an EXR band with other channels");
+  }
+}
+
+ExrStreamWriter::ExrStreamWriter(const std::string& path, int width, int height) {
+  if (width <= 0 || height <= 0) throw InputError({path}, "internal error: empty EXR image");
+  out_ = std::make_unique<Output>(path, width, height);
+}
+
+ExrStreamWriter::~ExrStreamWriter() {
+  if (out_ && out_->image != nullptr) {  // abandoned: close it, then the temporary goes
+    char err[512];
+    out_->api.finish(out_->image, err, sizeof err);
+  }
+}
+
+void ExrStreamWriter::AddRows(const ImageFile& band) {
+  Output& o = *out_;
+  o.Check(band);
+  if (o.image == nullptr) o.Open(band);
   // Every channel is 4 bytes, so the native (per-channel format) layout is 4·nc bytes a pixel.
-  std::vector<uint32_t> native(n * size_t(nc));
-  for (int c = 0; c < nc; ++c) {
-    const ImageChannel& ch = image.channels[size_t(c)];
+  const size_t n = size_t(band.width) * size_t(band.height), nc = band.channels.size();
+  std::vector<uint32_t> native(n * nc);
+  for (size_t c = 0; c < nc; ++c) {
+    const ImageChannel& ch = band.channels[c];
     for (size_t i = 0; i < n; ++i) {
       uint32_t bits;
       if (!ch.ids.empty()) bits = ch.ids[i];
       else std::memcpy(&bits, &ch.values[i], 4);
-      native[i * size_t(nc) + size_t(c)] = bits;
+      native[i * nc + c] = bits;
     }
   }
-  const SoftmolOiioApi& api = detail::OiioModule(path);
-  TemporaryFile file(path);
-  file.CloseForExternalWriter();  // OpenImageIO opens the temporary by name
-  const SoftmolOiioWrite w{path.c_str(), file.temporaryPath().c_str(), image.width, image.height, nc,
-                           names.data(), isU32.data(), alpha, z, attrNames, attrValues, 3, native.data()};
   char err[512] = "";
-  if (!api.write(&w, err, sizeof err)) throw InputError({path}, std::string("cannot write the image: ") + err);
-  file.Commit();
+  if (!o.api.writeRows(o.image, o.rowsDone, o.rowsDone + band.height, native.data(), err, sizeof err))
+    o.Fail("cannot write the image: ", err);
+  o.rowsDone += band.height;
+}
+
+void ExrStreamWriter::Finish() {
+  Output& o = *out_;
+  if (o.image == nullptr || o.rowsDone != o.height)
+    throw InputError({o.path}, "internal error: an EXR finished after " + std::to_string(o.rowsDone) + " of " +
+                                   std::to_string(o.height) + " rows");
+  char err[512] = "";
+  void* image = std::exchange(o.image, nullptr);
+  if (!o.api.finish(image, err, sizeof err)) o.Fail("cannot write the image: ", err);
+  o.file.Commit();
+}
+
+void WriteExr(const std::string& path, const ImageFile& image) {
+  ExrStreamWriter exr(path, image.width, image.height);
+  exr.AddRows(image);
+  exr.Finish();
 }
 
 Image8 ReadImage8(const std::string& path) {

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,25 @@ void WritePng(const std::string& path, int width, int height, int channels,
 
 // OpenEXR with every channel of `image` (mixed float32 / uint32), zip-compressed.
 void WriteExr(const std::string& path, const ImageFile& image);
+
+// The same file written by bands of rows from the top, so that an image too large to hold (a
+// poster) is never whole in memory: the first band names the channels, every band has them and
+// the image's width, and Finish() is the whole image (its bytes are WriteExr's for the whole).
+// Destroyed unfinished (a failed render), it leaves nothing under either name.
+class ExrStreamWriter {
+ public:
+  ExrStreamWriter(const std::string& path, int width, int height);
+  ~ExrStreamWriter();
+  ExrStreamWriter(const ExrStreamWriter&) = delete;
+  ExrStreamWriter& operator=(const ExrStreamWriter&) = delete;
+
+  void AddRows(const ImageFile& band);
+  void Finish();
+
+ private:
+  struct Output;
+  std::unique_ptr<Output> out_;
+};
 
 // Reads an image as 8-bit interleaved pixels (for tests and `diff`): a PNG through libpng, with
 // its own channel count and straight alpha; any other format through the OpenImageIO module.

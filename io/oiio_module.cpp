@@ -36,21 +36,45 @@ OIIO::ImageSpec SpecOf(const SoftmolOiioWrite& w) {
   return spec;
 }
 
-int Write(const SoftmolOiioWrite* w, char* err, size_t errSize) {
+void* Create(const SoftmolOiioWrite* w, char* err, size_t errSize) {
   try {
     auto out = OIIO::ImageOutput::create(w->formatPath);
     if (!out) {
       SetError(err, errSize, "unsupported image format: " + OIIO::geterror());
-      return 0;
+      return nullptr;
     }
-    bool ok = out->open(w->filePath, SpecOf(*w)) && out->write_image(OIIO::TypeDesc::UNKNOWN, w->pixels);
-    ok = out->close() && ok;  // close() flushes: its failure is a failed write too
-    if (!ok) SetError(err, errSize, out->geterror());
-    return ok ? 1 : 0;
+    if (!out->open(w->filePath, SpecOf(*w))) {
+      SetError(err, errSize, out->geterror());
+      return nullptr;
+    }
+    return out.release();
   } catch (const std::exception& e) {
     SetError(err, errSize, e.what());
-    return 0;
+    return nullptr;
   }
+}
+
+OIIO::ImageOutput* Out(void* output) { return static_cast<OIIO::ImageOutput*>(output); }
+
+int WriteRows(void* output, int ybegin, int yend, const void* pixels, char* err, size_t errSize) {
+  try {
+    if (Out(output)->write_scanlines(ybegin, yend, 0, OIIO::TypeDesc::UNKNOWN, pixels)) return 1;
+    SetError(err, errSize, Out(output)->geterror());
+  } catch (const std::exception& e) {
+    SetError(err, errSize, e.what());
+  }
+  return 0;
+}
+
+int Finish(void* output, char* err, size_t errSize) {
+  std::unique_ptr<OIIO::ImageOutput> out(Out(output));
+  try {
+    if (out->close()) return 1;  // close() flushes: its failure is a failed write too
+    SetError(err, errSize, out->geterror());
+  } catch (const std::exception& e) {
+    SetError(err, errSize, e.what());
+  }
+  return 0;
 }
 
 void* Open(const char* path, char* err, size_t errSize) {
@@ -89,7 +113,7 @@ void Close(void* image) {
   std::unique_ptr<OIIO::ImageInput> in(In(image));  // ImageInput::destroy via unique_ptr's deleter
 }
 
-const SoftmolOiioApi kApi = {SOFTMOL_OIIO_ABI, Write, Open, Info, ChannelName, ChannelIsU32, Read, Close};
+const SoftmolOiioApi kApi = {SOFTMOL_OIIO_ABI, Create, WriteRows, Finish, Open, Info, ChannelName, ChannelIsU32, Read, Close};
 
 }  // namespace
 

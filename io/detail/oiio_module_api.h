@@ -9,7 +9,7 @@
 
 extern "C" {
 
-#define SOFTMOL_OIIO_ABI 1  // bump when the table changes
+#define SOFTMOL_OIIO_ABI 2  // bump when the table changes
 
 enum SoftmolOiioType { kSoftmolOiioU8 = 0, kSoftmolOiioF32 = 1, kSoftmolOiioU32 = 2 };
 
@@ -23,13 +23,17 @@ struct SoftmolOiioWrite {
   const char* const* attributeNames;  // string attributes ("compression" = "zip", ...)
   const char* const* attributeValues;
   int nattributes;
-  const void* pixels;  // interleaved, 4 bytes per channel value
 };
 
 struct SoftmolOiioApi {
   int abi;  // SOFTMOL_OIIO_ABI
-  // 1 on success; 0 with a message.
-  int (*write)(const SoftmolOiioWrite* w, char* err, size_t errSize);
+  // A written image, by rows from the top: an open output, or null with a message.
+  void* (*create)(const SoftmolOiioWrite* w, char* err, size_t errSize);
+  // Rows [ybegin, yend), the next ones, interleaved, 4 bytes per channel value; 1 on success.
+  int (*writeRows)(void* output, int ybegin, int yend, const void* pixels, char* err, size_t errSize);
+  // Closes (flushes) and frees the output; 1 when every byte was written. Also the way to
+  // abandon a half-written one.
+  int (*finish)(void* output, char* err, size_t errSize);
   // An open image, or null with a message.
   void* (*open)(const char* path, char* err, size_t errSize);
   void (*info)(void* image, int* width, int* height, int* nchannels);
