@@ -330,19 +330,27 @@ void GlMirror(benchmark::State& state, int molecule) {
 
 // ---- the ratios -------------------------------------------------------------------------
 
-// Keeps every iteration run's real time (ms) by benchmark name, for the summary.
+// Keeps every iteration run's real time (ms) by benchmark name, for the summary; with
+// --benchmark_report_aggregates_only the reporter sees only the aggregates, so their median is
+// kept too.
 class RatioReporter : public benchmark::ConsoleReporter {
  public:
   void ReportRuns(const std::vector<Run>& runs) override {
-    for (const Run& run : runs)
-      if (run.run_type == Run::RT_Iteration && !run.error_occurred)
-        times_[run.run_name.function_name].push_back(run.GetAdjustedRealTime());
+    for (const Run& run : runs) {
+      if (run.error_occurred) continue;
+      const std::string& name = run.run_name.function_name;
+      if (run.run_type == Run::RT_Iteration) times_[name].push_back(run.GetAdjustedRealTime());
+      else if (run.aggregate_name == "median") medians_[name] = run.GetAdjustedRealTime();
+    }
     ConsoleReporter::ReportRuns(runs);
   }
   // Median over repetitions; NaN when the benchmark did not run.
   double Median(const std::string& name) const {
     auto it = times_.find(name);
-    if (it == times_.end() || it->second.empty()) return std::nan("");
+    if (it == times_.end() || it->second.empty()) {
+      auto m = medians_.find(name);
+      return m == medians_.end() ? std::nan("") : m->second;
+    }
     std::vector<double> t = it->second;
     std::sort(t.begin(), t.end());
     const size_t n = t.size();
@@ -351,6 +359,7 @@ class RatioReporter : public benchmark::ConsoleReporter {
 
  private:
   std::map<std::string, std::vector<double>> times_;
+  std::map<std::string, double> medians_;
 };
 
 std::string Name(int molecule, const char* what) {
@@ -361,12 +370,15 @@ void PrintRatios(const RatioReporter& r) {
   std::printf("\nside by side, %dx%d, %d threads, medians (ms; peer / softmol):\n", kWidth, kHeight, kThreads);
   for (int m : kMolecules) {
     const double soft = r.Median(Name(m, "softmol"));
+    if (std::isnan(soft)) continue;  // filtered out: nothing to compare with
     std::printf("  %-5s softmol %.2f", bench::kBenchMolecules[m].name, soft);
     for (const char* peer : {"embree_rays8", "embree_rays16", "gl_llvmpipe"}) {
       const double t = r.Median(Name(m, peer));
       if (!std::isnan(t)) std::printf(" | %s %.2f (%.1fx)", peer, t, t / soft);
     }
-    std::printf(" | embree_bvh_build %.2f\n", r.Median(Name(m, "embree_bvh_build")));
+    const double build = r.Median(Name(m, "embree_bvh_build"));
+    if (!std::isnan(build)) std::printf(" | embree_bvh_build %.2f", build);
+    std::printf("\n");
   }
 }
 
