@@ -42,7 +42,7 @@ struct RenderArgs {
   std::string output;       // "": the molecule's stem in the working directory (1tii.png)
   std::string size = "1024x768";
   scene::SceneLayers layers;  // --style, --show, --hide, --show-solvent, --color
-  bool helixCylinders = false;  // --helix cylinder (style tube)
+  raster::RepresentationOptions rep;  // --ball-scale, --bond-radius, --stick-radius, --tube-radius, --helix
   std::string assembly;
   std::string camera;       // EX,EY,EZ,TX,TY,TZ,UX,UY,UZ
   std::string rotate;       // X,Y,Z degrees

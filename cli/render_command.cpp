@@ -116,7 +116,16 @@ io::ParamTable<RenderArgs> JobParams() {
       SwitchParam<RenderArgs>("show-solvent", [](auto& a) -> auto& { return a.layers.showSolvent; },
                               "Draw the water too (hidden by default)", "molecule"),
       ColorRuleParam(),
-      ChoiceParam<RenderArgs>("helix", [](auto& a) -> auto& { return a.helixCylinders; },
+      RealParam<RenderArgs>("ball-scale", [](auto& a) -> auto& { return a.rep.ballScale; }, {0.01, 5.0}, "",
+                            "Style balls: sphere radius as a fraction of the van der Waals radius (PyMOL "
+                            "sphere_scale)", "molecule"),
+      RealParam<RenderArgs>("bond-radius", [](auto& a) -> auto& { return a.rep.bondRadius; }, {0.01, 5.0}, "Å",
+                            "Styles balls and ellipsoids: bond cylinder radius", "molecule"),
+      RealParam<RenderArgs>("stick-radius", [](auto& a) -> auto& { return a.rep.licoriceRadius; }, {0.01, 5.0}, "Å",
+                            "Style licorice: stick and joint radius (PyMOL stick_radius)", "molecule"),
+      RealParam<RenderArgs>("tube-radius", [](auto& a) -> auto& { return a.rep.tube.radius; }, {0.01, 5.0}, "Å",
+                            "Style tube: radius of the backbone trace (PyMOL cartoon_tube_radius)", "molecule"),
+      ChoiceParam<RenderArgs>("helix", [](auto& a) -> auto& { return a.rep.tube.helixCylinders; },
                               std::vector<std::pair<std::string, bool>>{{"tube", false}, {"cylinder", true}},
                               "Style tube: helices follow the tube, or are one cylinder each along their axis",
                               "molecule"),
@@ -444,7 +453,7 @@ InputScene PrepareInput(const RenderArgs& a, const RunPlan& plan, LoadedMolecule
   const Clock::time_point t0 = Clock::now();
   s.looks = scene::ResolveLooks(s.loaded.molecule, a.layers);
   WarnEmptyLayers(s.looks.emptyLayers);
-  s.rep.tube.helixCylinders = a.helixCylinders;
+  s.rep = a.rep;
   s.drawn = raster::BuildRepresentation(s.loaded.molecule, s.looks.looks, s.rep);
   sink.AddSteps({{"representation", MsSince(t0)}});
   if (s.drawn.scene.size() == 0)

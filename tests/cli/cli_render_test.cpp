@@ -305,5 +305,39 @@ TEST(CliRender, TubeShowsTheBackboneTheSameForAnyThreadCount) {
   EXPECT_NE(bad.err.find("--helix"), std::string::npos) << bad.err;
 }
 
+// The representation's sizes (PyMOL's sphere_scale, stick_radius, cartoon_tube_radius): each
+// changes the coverage the way its name says, and a value out of range names its option.
+TEST(CliRender, RepresentationSizesChangeWhatIsDrawn) {
+  const auto dir = ScratchDir("render_sizes");
+  auto covered = [&](const std::string& args) {
+    const std::string out = (dir / "sizes.png").string();
+    const CommandResult r = RunSoftmol("render --ao none '" + Data("1tii.pdb") + "' -o '" + out +
+                                           "' --size 160x120 --background 000000 " + args, dir);
+    EXPECT_EQ(r.exitCode, 0) << args << ": " << r.err;
+    const io::Image8 img = io::ReadImage8(out);
+    size_t n = 0;
+    for (size_t i = 0; i < img.pixels.size(); i += 3) n += img.pixels[i] || img.pixels[i + 1] || img.pixels[i + 2];
+    return n;
+  };
+  const struct {
+    const char* style;
+    const char* option;
+    const char* thin;
+    const char* thick;
+  } cases[] = {{"tube", "--tube-radius", "0.2", "1.5"},
+               {"licorice", "--stick-radius", "0.1", "0.6"},
+               {"balls", "--ball-scale", "0.1", "0.5"},
+               {"balls", "--bond-radius", "0.05", "0.5"}};
+  for (const auto& c : cases) {
+    const std::string base = std::string("--style ") + c.style + " " + c.option + " ";
+    EXPECT_LT(covered(base + c.thin), covered(base + c.thick)) << c.option;
+  }
+  const CommandResult bad = RunSoftmol("render --ao none '" + Data("1tii.pdb") + "' -o '" + (dir / "x.png").string() +
+                                           "' --style tube --tube-radius 0",
+                                       dir);
+  EXPECT_EQ(bad.exitCode, 2);
+  EXPECT_NE(bad.err.find("--tube-radius"), std::string::npos) << bad.err;
+}
+
 }  // namespace
 }  // namespace softmol::test
