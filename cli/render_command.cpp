@@ -76,6 +76,26 @@ std::vector<std::pair<std::string, std::string>> BundleChoices(std::span<const O
   return choices;
 }
 
+// How the styles are sized: raster::RepresentationOptions, as PyMOL names the same settings.
+io::ParamTable<raster::RepresentationOptions> RepresentationParams() {
+  using io::ChoiceParam, io::RealParam;
+  using R = raster::RepresentationOptions;
+  return {
+      RealParam<R>("ball-scale", [](auto& r) -> auto& { return r.ballScale; }, {0.01, 5.0}, "",
+                   "Style balls: sphere radius as a fraction of the van der Waals radius (PyMOL sphere_scale)",
+                   "molecule"),
+      RealParam<R>("bond-radius", [](auto& r) -> auto& { return r.bondRadius; }, {0.01, 5.0}, "Å",
+                   "Styles balls and ellipsoids: bond cylinder radius", "molecule"),
+      RealParam<R>("stick-radius", [](auto& r) -> auto& { return r.licoriceRadius; }, {0.01, 5.0}, "Å",
+                   "Style licorice: stick and joint radius (PyMOL stick_radius)", "molecule"),
+      RealParam<R>("tube-radius", [](auto& r) -> auto& { return r.tube.radius; }, {0.01, 5.0}, "Å",
+                   "Style tube: radius of the backbone trace (PyMOL cartoon_tube_radius)", "molecule"),
+      ChoiceParam<R>("helix", [](auto& r) -> auto& { return r.tube.helixCylinders; },
+                     std::vector<std::pair<std::string, bool>>{{"tube", false}, {"cylinder", true}},
+                     "Style tube: helices follow the tube, or are one cylinder each along their axis", "molecule"),
+  };
+}
+
 // The options `softmol render` itself reads (files, framing, the job).
 io::ParamTable<RenderArgs> JobParams() {
   using io::ChoiceParam, io::IntParam, io::RealParam, io::SwitchParam, io::TextParam;
@@ -116,19 +136,6 @@ io::ParamTable<RenderArgs> JobParams() {
       SwitchParam<RenderArgs>("show-solvent", [](auto& a) -> auto& { return a.layers.showSolvent; },
                               "Draw the water too (hidden by default)", "molecule"),
       ColorRuleParam(),
-      RealParam<RenderArgs>("ball-scale", [](auto& a) -> auto& { return a.rep.ballScale; }, {0.01, 5.0}, "",
-                            "Style balls: sphere radius as a fraction of the van der Waals radius (PyMOL "
-                            "sphere_scale)", "molecule"),
-      RealParam<RenderArgs>("bond-radius", [](auto& a) -> auto& { return a.rep.bondRadius; }, {0.01, 5.0}, "Å",
-                            "Styles balls and ellipsoids: bond cylinder radius", "molecule"),
-      RealParam<RenderArgs>("stick-radius", [](auto& a) -> auto& { return a.rep.licoriceRadius; }, {0.01, 5.0}, "Å",
-                            "Style licorice: stick and joint radius (PyMOL stick_radius)", "molecule"),
-      RealParam<RenderArgs>("tube-radius", [](auto& a) -> auto& { return a.rep.tube.radius; }, {0.01, 5.0}, "Å",
-                            "Style tube: radius of the backbone trace (PyMOL cartoon_tube_radius)", "molecule"),
-      ChoiceParam<RenderArgs>("helix", [](auto& a) -> auto& { return a.rep.tube.helixCylinders; },
-                              std::vector<std::pair<std::string, bool>>{{"tube", false}, {"cylinder", true}},
-                              "Style tube: helices follow the tube, or are one cylinder each along their axis",
-                              "molecule"),
       TextParam<RenderArgs>("assembly", [](auto& a) -> auto& { return a.assembly; }, "ID", "Build biological assembly ID",
                             "molecule"),
       TextParam<RenderArgs>("trajectory", [](auto& a) -> auto& { return a.trajectory; }, "FILE",
@@ -184,7 +191,7 @@ io::ParamTable<RenderArgs> JobParams() {
       IntParam<RenderArgs>("repeat", [](auto& a) -> auto& { return a.repeat; }, 1, 100000, "",
                            "Render the frame N times (steady-state timings)", "job"),
       IntParam<RenderArgs>("band-rows", [](auto& a) -> auto& { return a.bandRows; }, 0, 32768, "",
-                           "Render the image in bands of N rows streamed to the PNG, in bounded memory (the same "
+                           "Render the image in bands of N rows streamed to the PNG or EXR, in bounded memory (the same "
                            "bytes); 0: bands only for images above 2^25 samples (size x ssaa^2)", "output"),
       TextParam<RenderArgs>("shard", [](auto& a) -> auto& { return a.shard; }, "I/N",
                             "Render only every N-th image of the run (frames of all inputs in order), starting at "
@@ -206,6 +213,7 @@ io::ParamTable<RenderArgs> JobParams() {
 
 io::ParamTable<RenderArgs> RenderParams() {
   io::ParamTable<RenderArgs> t = JobParams();
+  io::Append(t, io::Lift<RenderArgs>(RepresentationParams(), [](auto& a) -> auto& { return a.rep; }));
   io::Append(t, io::Lift<RenderArgs>(BakeParams(), [](auto& a) -> auto& { return a.bake; }));
   io::Append(t, io::Lift<RenderArgs>(effects::RenderParams(), [](auto& a) -> auto& { return a.options; }));
   return t;

@@ -470,8 +470,9 @@ HWY_INLINE void DrawRows(const detail::FrameConstants& fc, const Prim& prim, con
 }
 
 // Prefetches the cache lines of *p (a primitive is one to three lines, not aligned to them).
-// The loop runs past the last byte rather than prefetching it: GCC 12 drops every prefetch of
-// the function when one address is p + sizeof(T) - 1 (checked in the disassembly).
+// The loop runs past the last byte rather than prefetching it, and each kind prefetches in its
+// own branch: GCC 12 drops every prefetch of the function when one address is
+// p + sizeof(T) - 1 or is chosen between the kinds' arrays by ?: (checked in the disassembly).
 template <class T>
 HWY_INLINE void PrefetchLines(const T* p) {
   const char* bytes = reinterpret_cast<const char*>(p);
