@@ -73,6 +73,7 @@ struct RenderOptions {
   glm::vec3 contourColor{0.0f, 0.0f, 0.0f};  // linear RGB
   float nearClip = 0.0f;      // Å from the eye: cut atoms get flat caps (§5.3); 0 = off
   float nearClipLighten = 3.0f;  // Å behind the clip plane over which AO fades to open
+  raster::SetupPrecision setupPrecision = raster::SetupPrecision::kDouble;  // raster/frame.h says why
   bool shadows = false;
   ShadowOptions shadow;
   bool outlines = false;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "io/params.h"
+#include "raster/frame.h"
 
 namespace softmol::effects {
 
@@ -125,6 +126,8 @@ std::vector<PlannedPass> PlanPasses(const RenderOptions& options);
 
 // The raster::GBufferChannel bits the G-buffer pass of a plan must write.
 uint32_t GBufferChannels(const std::vector<PlannedPass>& plan);
+// The rasterizer's options for the G-buffer pass of `plan` (both backends draw with them).
+raster::FrameOptions GBufferFrameOptions(const RenderOptions& options, const std::vector<PlannedPass>& plan);
 
 // "depth, normal, ao" — for profiles and error messages.
 std::string BufferNames(uint64_t buffers);

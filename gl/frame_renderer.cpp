@@ -131,12 +131,8 @@ struct GlPassContext {
 };
 
 void GlGBuffer(GlPassContext& c) {
-  raster::FrameOptions fo;
-  fo.channels = c.channels = effects::GBufferChannels(c.plan);
-  fo.contourWidth = c.o.contourWidth;
-  fo.contourDepthAware = c.o.contourDepthAware;
-  fo.contourDepthScale = c.o.contourDepthScale;
-  fo.nearClip = c.o.nearClip;
+  const raster::FrameOptions fo = effects::GBufferFrameOptions(c.o, c.plan);
+  c.channels = fo.channels;
   c.stats = DrawGBuffer(c.m, c.scene, c.cam, fo);
 }
 

@@ -14,6 +14,8 @@
 
 namespace softmol::raster {
 
+enum class SetupPrecision : uint8_t { kDouble, kFloat };
+
 struct FrameOptions {
   int tileSize = 32;  // pixels, a power of two in [8, 128] (below 16 wastes AVX-512 lanes)
   uint32_t channels = kDepth | kNormal | kBaseColor | kPrimitiveId;
@@ -30,6 +32,11 @@ struct FrameOptions {
   // replaces the camera's near plane. 0 = off (the near plane clips the front surface and
   // the inner wall shows, as without).
   float nearClip = 0;
+  // What the per-primitive setup computes in. kDouble is what renders use: camera-relative
+  // constants stay exact far from the origin (DESIGN.md). kFloat exists to price that choice
+  // (`softmol study`'s setup-precision): spheres and cylinders from float positions in float
+  // arithmetic, as a GPU vertex stage would; ellipsoids and the AO frames stay double.
+  SetupPrecision setupPrecision = SetupPrecision::kDouble;
 };
 
 // Relative depth band of near-plane caps just in front of nearClip (where nothing else can

@@ -1,4 +1,4 @@
-// raster/setup.cpp — per-frame primitive setup in double precision: camera-relative eye-space
+// raster/setup.cpp — per-frame primitive setup in double precision (float only to price it): camera-relative eye-space
 // constants for the fragment kernels and tight screen boxes (Sigg et al. 2006, §3.2).
 #include "raster/detail/setup.h"
 
@@ -12,6 +12,7 @@
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 #include <limits>
+#include <type_traits>
 
 #include "raster/detail/setup_kernel.h"
 
@@ -117,6 +118,7 @@ ViewSetup MakeViewSetup(const Camera& camera, const PrimitiveScene& scene,
                         const FrameOptions& options) {
   ViewSetup v = MakeViewSetup(camera, scene);
   v.contourWidth = options.contourWidth > 0.0f ? double(options.contourWidth) : 0.0;
+  v.floatSetup = options.setupPrecision == SetupPrecision::kFloat;
   if (options.nearClip > 0.0f) {  // Tarini §5.3: the near clipping plane is the cut
     v.nearPlane = double(options.nearClip);
     v.capping = true;
@@ -260,8 +262,10 @@ bool SetupCylinder(const PrimitiveScene& scene, const ViewSetup& v, size_t i, Cy
 namespace {
 
 // SetupCylinder's packing of one lane of the vectorised setup (same conversions, same frame).
-void PackCylinder(const PrimitiveScene& scene, const ViewSetup& v, size_t i, const CylinderSetupLanes& l, size_t j,
-                  double r, bool surfaceFrame, CylinderPrim& p) {
+// In the float setup, T = float: the radius's constants are float arithmetic too.
+template <class T>
+void PackCylinder(const PrimitiveScene& scene, const ViewSetup& v, size_t i, const CylinderSetupLanes<T>& l, size_t j,
+                  T r, bool surfaceFrame, CylinderPrim& p) {
   const CylinderSet& in = scene.cylinders;
   p.px = float(l.ax[j]), p.py = float(l.ay[j]), p.pz = float(l.az[j]);
   p.wx = float(l.wx[j]), p.wy = float(l.wy[j]), p.wz = float(l.wz[j]);
@@ -270,12 +274,12 @@ void PackCylinder(const PrimitiveScene& scene, const ViewSetup& v, size_t i, con
   p.c0 = float(l.c0[j]);
   p.aOrtho = float(l.aOrtho[j]);
   p.rr = float(r * r);
-  p.invR = float(1.0 / r);
+  p.invR = float(T(1) / r);
   p.r = float(r);
-  const double len = l.len[j];
+  const T len = l.len[j];
   p.len = float(len);
-  p.halfLen = float(0.5 * len);
-  p.invLen = float(1.0 / len);
+  p.halfLen = float(T(0.5) * len);
+  p.invLen = float(T(1) / len);
   SetSurfaceFrame(v, glm::dvec3(in.x0[i], in.y0[i], in.z0[i]), glm::dvec3(in.x1[i], in.y1[i], in.z1[i]), surfaceFrame,
                   p);
   p.zMin = float(l.zMin[j]);
@@ -373,14 +377,28 @@ void ForEachBatch(size_t count, Batch&& batch) {
   });
 }
 
+// A batch of a scene's double array as the setup's type: the positions themselves (double), or
+// rounded to float as a float vertex buffer holds them.
+template <class T, class Source>
+const T* BatchOf(const Source& v, size_t first, size_t n, T* scratch) {
+  if constexpr (std::is_same_v<T, typename Source::value_type>) {
+    return v.data() + first;
+  } else {
+    for (size_t j = 0; j < n; ++j) scratch[j] = T(v[first + j]);
+    return scratch;
+  }
+}
+
 // Spheres: vectorised batches (raster/setup_kernel.cpp), packed here.
+template <class T>
 void SetupSpheres(const PrimitiveScene& scene, const SetupConstants& k, SetupOutput& out) {
   const SphereSet& in = scene.spheres;
   ForEachBatch(in.size(), [&](size_t first, size_t n) {
-    SphereSetupLanes lanes;
-    double radius[kSetupBatch];
-    for (size_t j = 0; j < n; ++j) radius[j] = in.radius[first + j];
-    SetupSpheresBatch(k, in.x.data() + first, in.y.data() + first, in.z.data() + first, radius, n, lanes);
+    SphereSetupLanes<T> lanes;
+    T radius[kSetupBatch], px[kSetupBatch], py[kSetupBatch], pz[kSetupBatch];
+    for (size_t j = 0; j < n; ++j) radius[j] = T(in.radius[first + j]);
+    SetupSpheresBatch(k, BatchOf(in.x, first, n, px), BatchOf(in.y, first, n, py), BatchOf(in.z, first, n, pz),
+                      radius, n, lanes);
     for (size_t j = 0; j < n; ++j) {
       const size_t i = first + j;
       SpherePrim& p = out.spheres[i];
@@ -391,8 +409,8 @@ void SetupSpheres(const PrimitiveScene& scene, const SetupConstants& k, SetupOut
       } else {
         p.cx = float(lanes.cx[j]), p.cy = float(lanes.cy[j]), p.cz = float(lanes.cz[j]);
         p.rr = float(lanes.rr[j]);
-        p.c0 = float(lanes.c0[j]);  // |c|² − r² in double (cancellation ≪ float rounding)
-        p.invR = float(1.0 / radius[j]);
+        p.c0 = float(lanes.c0[j]);  // |c|² − r² in double: its cancellation ≪ float rounding
+        p.invR = float(T(1) / radius[j]);
         p.r = float(radius[j]);
         p.zMin = float(lanes.zMin[j]);
         p.color = in.color[i];
@@ -406,15 +424,17 @@ void SetupSpheres(const PrimitiveScene& scene, const SetupConstants& k, SetupOut
 }
 
 // Cylinders: vectorised batches too, packed here exactly as SetupCylinder packs.
+template <class T>
 void SetupCylinders(const PrimitiveScene& scene, const ViewSetup& v, const SetupConstants& k, bool surfaceFrame,
                     SetupOutput& out) {
   const CylinderSet& cyl = scene.cylinders;
   ForEachBatch(cyl.size(), [&](size_t first, size_t n) {
-    CylinderSetupLanes lanes;
-    double radius[kSetupBatch];
-    for (size_t j = 0; j < n; ++j) radius[j] = cyl.radius[first + j];
-    const CylinderEnds ends{cyl.x0.data() + first, cyl.y0.data() + first, cyl.z0.data() + first,
-                            cyl.x1.data() + first, cyl.y1.data() + first, cyl.z1.data() + first};
+    CylinderSetupLanes<T> lanes;
+    T radius[kSetupBatch], scratch[6][kSetupBatch];
+    for (size_t j = 0; j < n; ++j) radius[j] = T(cyl.radius[first + j]);
+    const CylinderEnds<T> ends{BatchOf(cyl.x0, first, n, scratch[0]), BatchOf(cyl.y0, first, n, scratch[1]),
+                               BatchOf(cyl.z0, first, n, scratch[2]), BatchOf(cyl.x1, first, n, scratch[3]),
+                               BatchOf(cyl.y1, first, n, scratch[4]), BatchOf(cyl.z1, first, n, scratch[5])};
     SetupCylindersBatch(k, ends, radius, n, lanes);
     for (size_t j = 0; j < n; ++j) {
       const size_t i = first + j;
@@ -451,8 +471,13 @@ uint64_t SetupPrimitives(const PrimitiveScene& scene, const ViewSetup& v, SetupO
   out.cylinders.resize(nC), out.cylinderKey.resize(nC), out.cylinderEntry.resize(nC);
   out.ellipsoids.resize(nE), out.ellipsoidKey.resize(nE), out.ellipsoidEntry.resize(nE);
   const SetupConstants k = MakeSetupConstants(v);
-  SetupSpheres(scene, k, out);
-  SetupCylinders(scene, v, k, surfaceFrame, out);
+  if (v.floatSetup) {
+    SetupSpheres<float>(scene, k, out);
+    SetupCylinders<float>(scene, v, k, surfaceFrame, out);
+  } else {
+    SetupSpheres<double>(scene, k, out);
+    SetupCylinders<double>(scene, v, k, surfaceFrame, out);
+  }
   SetupEllipsoids(scene, v, out);
   uint64_t culled = 0;
   for (uint32_t key : out.sphereKey) culled += key == kCulledKey ? 1 : 0;

@@ -9,13 +9,7 @@ namespace {
 
 void RunGBuffer(FrameContext& c) {
   const RenderOptions& o = c.options;
-  raster::FrameOptions fo;
-  fo.tileSize = o.tileSize;
-  fo.channels = GBufferChannels(c.plan);
-  fo.contourWidth = o.contourWidth;
-  fo.contourDepthAware = o.contourDepthAware;
-  fo.contourDepthScale = o.contourDepthScale;
-  fo.nearClip = o.nearClip;
+  const raster::FrameOptions fo = GBufferFrameOptions(o, c.plan);
   const raster::TileHook* hook = c.tileHook.consume ? &c.tileHook : nullptr;
   c.frame.rasterStats = raster::RenderGBuffer(c.scene, c.camera, fo, c.res.gbuffer, &c.res.workspace, hook);
 }
@@ -39,6 +33,12 @@ io::ParamTable<RenderOptions> GBufferParams() {
       RealParam<RenderOptions>("near-clip", [](auto& o) -> auto& { return o.nearClip; }, {0.0, 1e9}, "Å",
                                "Cut the molecule at this distance from the eye, capping cut atoms (Tarini §5.3); 0 = off",
                                "gbuffer"),
+      ChoiceParam<RenderOptions>("setup-precision", [](auto& o) -> auto& { return o.setupPrecision; },
+                                 std::vector<std::pair<std::string, raster::SetupPrecision>>{
+                                     {"double", raster::SetupPrecision::kDouble}, {"float", raster::SetupPrecision::kFloat}},
+                                 "Arithmetic of the per-primitive setup: double (stable far from the origin) or float "
+                                 "(as a GPU vertex stage; there to price the difference, `softmol study`)",
+                                 "gbuffer"),
   };
   t[1].implicitValue = "0.3";  // --contours
   return t;
@@ -47,6 +47,18 @@ io::ParamTable<RenderOptions> GBufferParams() {
 uint64_t GBufferReads(const RenderOptions&) { return kBufScene; }
 
 }  // namespace
+
+raster::FrameOptions GBufferFrameOptions(const RenderOptions& o, const std::vector<PlannedPass>& plan) {
+  raster::FrameOptions fo;
+  fo.tileSize = o.tileSize;
+  fo.channels = GBufferChannels(plan);
+  fo.contourWidth = o.contourWidth;
+  fo.contourDepthAware = o.contourDepthAware;
+  fo.contourDepthScale = o.contourDepthScale;
+  fo.nearClip = o.nearClip;
+  fo.setupPrecision = o.setupPrecision;
+  return fo;
+}
 
 extern const PassUnit kGBufferPass = {PassId::kGBuffer, "gbuffer", "", /*perSample=*/true, /*bandBorder=*/0, Always,
                                       GBufferReads, kBufGBuffer, RunGBuffer, GBufferParams};

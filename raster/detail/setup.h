@@ -28,6 +28,7 @@ struct ViewSetup {
   bool ortho = false;
   double contourWidth = 0;  // ξ (Å): sphere and cylinder boxes and zMin grow by it
   bool capping = false;     // nearPlane is the clip plane of near-plane capping
+  bool floatSetup = false;  // spheres and cylinders set up in float (SetupPrecision::kFloat)
   glm::dvec3 ToEye(double x, double y, double z) const;  // camera-relative, double
 };
 

@@ -1,8 +1,10 @@
 // raster/detail/setup_kernel.h — vectorised sphere and cylinder setup (raster/setup_kernel.cpp):
 // eye-space constants, tight boxes (Sigg et al. eq. 5: S = r²I for a sphere, r²(I − wwᵀ) for a
-// cylinder's end discs) and sort keys for a batch, in double, as structure-of-arrays lanes that
-// setup.cpp then packs into SpherePrim / CylinderPrim. The cylinder kernel's scalar twin is
-// detail::SetupCylinder (raster/setup.cpp), which it equals bit for bit.
+// cylinder's end discs) and sort keys for a batch, as structure-of-arrays lanes that setup.cpp
+// then packs into SpherePrim / CylinderPrim. In double (what renders use); in float only to price
+// that choice (FrameOptions::setupPrecision, `softmol study`): the same kernel text over float
+// lanes and float positions, as a GPU vertex stage computes them. The double cylinder kernel's
+// scalar twin is detail::SetupCylinder (raster/setup.cpp), which it equals bit for bit.
 #pragma once
 
 #include <cstddef>
@@ -19,29 +21,36 @@ struct SetupConstants {
 
 inline constexpr size_t kSetupBatch = 256;
 
+template <class T>  // double or float
 struct SphereSetupLanes {  // kSetupBatch entries each
-  double cx[kSetupBatch], cy[kSetupBatch], cz[kSetupBatch], rr[kSetupBatch], c0[kSetupBatch];
-  double zMin[kSetupBatch], x0[kSetupBatch], x1[kSetupBatch], y0[kSetupBatch], y1[kSetupBatch];
-  double valid[kSetupBatch];  // 1 or 0
+  T cx[kSetupBatch], cy[kSetupBatch], cz[kSetupBatch], rr[kSetupBatch], c0[kSetupBatch];
+  T zMin[kSetupBatch], x0[kSetupBatch], x1[kSetupBatch], y0[kSetupBatch], y1[kSetupBatch];
+  T valid[kSetupBatch];  // 1 or 0
 };
 
+template <class T>
 struct CylinderSetupLanes {  // kSetupBatch entries each
-  double ax[kSetupBatch], ay[kSetupBatch], az[kSetupBatch];  // end 0, eye space
-  double wx[kSetupBatch], wy[kSetupBatch], wz[kSetupBatch];  // unit axis
-  double mx[kSetupBatch], my[kSetupBatch], mz[kSetupBatch];  // a × w
-  double pw[kSetupBatch], c0[kSetupBatch], aOrtho[kSetupBatch], len[kSetupBatch];
-  double zMin[kSetupBatch], x0[kSetupBatch], x1[kSetupBatch], y0[kSetupBatch], y1[kSetupBatch];
-  double valid[kSetupBatch];  // 1 or 0
+  T ax[kSetupBatch], ay[kSetupBatch], az[kSetupBatch];  // end 0, eye space
+  T wx[kSetupBatch], wy[kSetupBatch], wz[kSetupBatch];  // unit axis
+  T mx[kSetupBatch], my[kSetupBatch], mz[kSetupBatch];  // a × w
+  T pw[kSetupBatch], c0[kSetupBatch], aOrtho[kSetupBatch], len[kSetupBatch];
+  T zMin[kSetupBatch], x0[kSetupBatch], x1[kSetupBatch], y0[kSetupBatch], y1[kSetupBatch];
+  T valid[kSetupBatch];  // 1 or 0
 };
 
-// n <= kSetupBatch; r holds the radii promoted to double.
+// n <= kSetupBatch; positions and radii in the lanes' type.
 void SetupSpheresBatch(const SetupConstants& k, const double* x, const double* y,
-                       const double* z, const double* r, size_t n, SphereSetupLanes& out);
+                       const double* z, const double* r, size_t n, SphereSetupLanes<double>& out);
+void SetupSpheresBatch(const SetupConstants& k, const float* x, const float* y,
+                       const float* z, const float* r, size_t n, SphereSetupLanes<float>& out);
 // End 0 at (x0, y0, z0)[i], end 1 at (x1, y1, z1)[i]; the same n and radii as for spheres.
+template <class T>
 struct CylinderEnds {
-  const double *x0, *y0, *z0, *x1, *y1, *z1;
+  const T *x0, *y0, *z0, *x1, *y1, *z1;
 };
-void SetupCylindersBatch(const SetupConstants& k, const CylinderEnds& ends, const double* r, size_t n,
-                         CylinderSetupLanes& out);
+void SetupCylindersBatch(const SetupConstants& k, const CylinderEnds<double>& ends, const double* r, size_t n,
+                         CylinderSetupLanes<double>& out);
+void SetupCylindersBatch(const SetupConstants& k, const CylinderEnds<float>& ends, const float* r, size_t n,
+                         CylinderSetupLanes<float>& out);
 
 }  // namespace softmol::raster::detail

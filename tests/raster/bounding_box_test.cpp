@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "raster/detail/setup.h"
-#include "tests/support/reference_raycaster.h"
+#include "raster/reference_raycaster.h"
 #include "tests/support/scenes.h"
 
 namespace softmol::raster {
@@ -26,7 +26,7 @@ struct Extent {
 
 // Renders each primitive alone in the reference, so occlusion does not hide coverage.
 Extent ReferenceExtent(const PrimitiveScene& one, const Camera& cam) {
-  const test::ReferenceImage ref = test::RayCastReference(one, cam);
+  const ReferenceImage ref = RayCastReference(one, cam);
   Extent e;
   for (int y = 0; y < cam.height; ++y)
     for (int x = 0; x < cam.width; ++x)

@@ -39,13 +39,15 @@ FrameOptions Options(const test::NamedScene& s, bool edges) {
   return opt;
 }
 
-bool gEdges = false;  // set per test: every Render of the test uses it
+bool gEdges = false;       // set per test: every Render of the test uses it
+bool gFloatSetup = false;  // likewise: FrameOptions::setupPrecision
 
 std::vector<uint8_t> Render(const test::NamedScene& s, int threads, int tileSize,
                             FrameWorkspace* ws = nullptr) {
   GBuffer g;
   FrameOptions opt = Options(s, gEdges);
   opt.tileSize = tileSize;
+  opt.setupPrecision = gFloatSetup ? SetupPrecision::kFloat : SetupPrecision::kDouble;
   tbb::task_arena arena(threads);
   arena.execute([&] { RenderGBuffer(s.scene, s.camera, opt, g, ws); });
   return Bytes(g);
@@ -83,7 +85,7 @@ TEST_P(RasterDeterminismEdges, ThreadsRunsAndTileSizes) {
   }
 }
 
-TEST_P(RasterDeterminismEdges, EverySimdTargetGivesTheSameBytes) {
+void ExpectEverySimdTargetGivesTheSameBytes() {
   const std::vector<test::NamedScene> scenes = Scenes();
   std::vector<std::vector<uint8_t>> ref;
   for (const auto& s : scenes) ref.push_back(Render(s, 2, 32));
@@ -97,6 +99,16 @@ TEST_P(RasterDeterminismEdges, EverySimdTargetGivesTheSameBytes) {
   }
   hwy::SetSupportedTargetsForTest(0);
   EXPECT_GE(targets, 2) << "expected the scalar/baseline target and at least one more";
+}
+
+TEST_P(RasterDeterminismEdges, EverySimdTargetGivesTheSameBytes) { ExpectEverySimdTargetGivesTheSameBytes(); }
+
+// The float setup (there to price the double one, raster/frame.h) keeps the rule too.
+TEST(RasterDeterminism, FloatSetupGivesTheSameBytesForEveryTargetAndThreadCount) {
+  gFloatSetup = true;
+  ExpectEverySimdTargetGivesTheSameBytes();
+  for (const auto& s : Scenes()) EXPECT_EQ(Render(s, 1, 32), Render(s, 2, 16)) << s.name;
+  gFloatSetup = false;
 }
 
 // Rows of a width that is no multiple of 16 pixels start anywhere in a cache line, so the

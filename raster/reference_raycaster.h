@@ -1,8 +1,9 @@
-// tests/support/reference_raycaster.h — double-precision reference for the rasterizer: casts
+// raster/reference_raycaster.h — double-precision reference for the rasterizer: casts
 // the ray of every pixel centre against every primitive (brute force, no boxes, no tiles) and
 // keeps the nearest hit in [near, far]. Per pixel it also says whether the float kernels may
 // legitimately disagree: a primitive whose discriminant, axial coordinate or depth is within
-// the float kernels' rounding bound of a coverage boundary, or two hits tied in depth.
+// the float kernels' rounding bound of a coverage boundary, or two hits tied in depth. The
+// stability tests hold the rasterizer to it; `softmol study` prices float setup against it.
 #pragma once
 
 #include <cstdint>
@@ -11,7 +12,7 @@
 #include "raster/camera.h"
 #include "raster/primitives.h"
 
-namespace softmol::test {
+namespace softmol::raster {
 
 struct ReferenceImage {
   int width = 0, height = 0;
@@ -26,6 +27,7 @@ struct ReferenceImage {
 // Relative depth tolerance away from silhouettes (float kernel vs double reference).
 inline constexpr double kDepthRelTol = 1e-5;
 
-ReferenceImage RayCastReference(const raster::PrimitiveScene& scene, const raster::Camera& cam);
+// Rows in parallel (the current TBB arena); the same image for any thread count.
+ReferenceImage RayCastReference(const PrimitiveScene& scene, const Camera& cam);
 
-}  // namespace softmol::test
+}  // namespace softmol::raster

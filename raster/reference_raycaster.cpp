@@ -1,7 +1,10 @@
-// tests/support/reference_raycaster.cpp — see reference_raycaster.h. Written independently of
+// raster/reference_raycaster.cpp — see reference_raycaster.h. Written independently of
 // raster/shared/*.inc: textbook geometry in double (vector form, not the kernels' per-row
 // linear forms), so a mistake in the kernels' algebra cannot cancel out here.
-#include "tests/support/reference_raycaster.h"
+#include "raster/reference_raycaster.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -12,7 +15,7 @@
 
 #include "raster/detail/setup.h"
 
-namespace softmol::test {
+namespace softmol::raster {
 namespace {
 
 using glm::dvec3;
@@ -184,8 +187,8 @@ Hit EllipsoidHit(const Ray& ray, const dvec3& c, const glm::dmat3& A, double nea
 
 }  // namespace
 
-ReferenceImage RayCastReference(const raster::PrimitiveScene& scene, const raster::Camera& cam) {
-  const raster::detail::ViewSetup v = raster::detail::MakeViewSetup(cam, scene);
+ReferenceImage RayCastReference(const PrimitiveScene& scene, const Camera& cam) {
+  const detail::ViewSetup v = detail::MakeViewSetup(cam, scene);
   ReferenceImage img;
   img.width = cam.width;
   img.height = cam.height;
@@ -216,56 +219,58 @@ ReferenceImage RayCastReference(const raster::PrimitiveScene& scene, const raste
     eok[i] = std::abs(glm::determinant(ea[i])) >
              1e-9 * glm::length(ea[i][0]) * glm::length(ea[i][1]) * glm::length(ea[i][2]);
   }
-  for (int y = 0; y < cam.height; ++y)
-    for (int x = 0; x < cam.width; ++x) {
-      const double u = raster::PixelToRay(x, v.halfWidth, v.pixelScale);
-      const double w = raster::PixelToRay(y, v.halfHeight, v.pixelScale);
-      Ray ray;
-      if (v.ortho) {
-        ray.o = dvec3(u, w, 0.0);
-        ray.d = dvec3(0.0, 0.0, -1.0);
-      } else {
-        ray.o = dvec3(0.0);
-        ray.d = dvec3(u, w, -1.0);
-      }
-      Hit best;
-      uint32_t bestId = 0xFFFFFFFFu;
-      double second = kInf, ambiguousT = kInf;
-      auto consider = [&](const Hit& h, uint32_t id) {
-        if (h.ambiguous) ambiguousT = std::min(ambiguousT, h.tCandidate);
-        if (!h.valid) return;
-        if (h.t < best.t) {
-          second = best.t;
-          best = h;
-          bestId = id;
+  tbb::parallel_for(tbb::blocked_range<int>(0, cam.height), [&](const tbb::blocked_range<int>& rows) {
+    for (int y = rows.begin(); y != rows.end(); ++y)
+      for (int x = 0; x < cam.width; ++x) {
+        const double u = PixelToRay(x, v.halfWidth, v.pixelScale);
+        const double w = PixelToRay(y, v.halfHeight, v.pixelScale);
+        Ray ray;
+        if (v.ortho) {
+          ray.o = dvec3(u, w, 0.0);
+          ray.d = dvec3(0.0, 0.0, -1.0);
         } else {
-          second = std::min(second, h.t);
+          ray.o = dvec3(0.0);
+          ray.d = dvec3(u, w, -1.0);
         }
-      };
-      for (size_t i = 0; i < S.size(); ++i)
-        if (S.radius[i] > 0)
-          consider(SphereHit(ray, sc[i], S.radius[i], v.nearPlane, v.farPlane), uint32_t(i));
-      for (size_t i = 0; i < Cy.size(); ++i)
-        if (Cy.radius[i] > 0)
-          consider(CylinderHit(ray, c0[i], c1[i], Cy.radius[i], v.nearPlane, v.farPlane),
-                   uint32_t(S.size() + i));
-      for (size_t i = 0; i < El.size(); ++i)
-        if (eok[i])
-          consider(EllipsoidHit(ray, ec[i], ea[i], v.nearPlane, v.farPlane),
-                   uint32_t(S.size() + Cy.size() + i));
-      const size_t k = img.Index(x, y);
-      img.depth[k] = best.t;
-      img.id[k] = bestId;
-      img.depthTol[k] = best.tol;
-      img.normal[3 * k] = best.normal.x;
-      img.normal[3 * k + 1] = best.normal.y;
-      img.normal[3 * k + 2] = best.normal.z;
-      // Ambiguous when a boundary case could be in front of the winner, or two hits tie.
-      const bool tie = best.valid && second - best.t <= 2.0 * best.tol + 1e-5 * best.t;
-      img.ambiguous[k] =
-          (ambiguousT < kInf && ambiguousT <= best.t + best.tol + 1e-5 * std::abs(best.t)) || tie;
-    }
+        Hit best;
+        uint32_t bestId = 0xFFFFFFFFu;
+        double second = kInf, ambiguousT = kInf;
+        auto consider = [&](const Hit& h, uint32_t id) {
+          if (h.ambiguous) ambiguousT = std::min(ambiguousT, h.tCandidate);
+          if (!h.valid) return;
+          if (h.t < best.t) {
+            second = best.t;
+            best = h;
+            bestId = id;
+          } else {
+            second = std::min(second, h.t);
+          }
+        };
+        for (size_t i = 0; i < S.size(); ++i)
+          if (S.radius[i] > 0)
+            consider(SphereHit(ray, sc[i], S.radius[i], v.nearPlane, v.farPlane), uint32_t(i));
+        for (size_t i = 0; i < Cy.size(); ++i)
+          if (Cy.radius[i] > 0)
+            consider(CylinderHit(ray, c0[i], c1[i], Cy.radius[i], v.nearPlane, v.farPlane),
+                     uint32_t(S.size() + i));
+        for (size_t i = 0; i < El.size(); ++i)
+          if (eok[i])
+            consider(EllipsoidHit(ray, ec[i], ea[i], v.nearPlane, v.farPlane),
+                     uint32_t(S.size() + Cy.size() + i));
+        const size_t k = img.Index(x, y);
+        img.depth[k] = best.t;
+        img.id[k] = bestId;
+        img.depthTol[k] = best.tol;
+        img.normal[3 * k] = best.normal.x;
+        img.normal[3 * k + 1] = best.normal.y;
+        img.normal[3 * k + 2] = best.normal.z;
+        // Ambiguous when a boundary case could be in front of the winner, or two hits tie.
+        const bool tie = best.valid && second - best.t <= 2.0 * best.tol + 1e-5 * best.t;
+        img.ambiguous[k] =
+            (ambiguousT < kInf && ambiguousT <= best.t + best.tol + 1e-5 * std::abs(best.t)) || tie;
+      }
+  });
   return img;
 }
 
-}  // namespace softmol::test
+}  // namespace softmol::raster
