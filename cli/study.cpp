@@ -30,7 +30,9 @@ std::vector<MethodPlan> DefaultPlans() {
                       {"pcf-pretest", {"8", "0"}},
                       {"shadow-map", {"512", "1024", "2048", "4096", "8192"}}},
                      0, 1, 1};
-  return {baked, cone, aa, shadows};
+  // Float setup is the less accurate end (raster/frame.h SetupPrecision).
+  MethodPlan setup{Method::kSetupPrecision, "setup-precision", {{"setup-precision", {"float", "double"}}}};
+  return {baked, cone, aa, shadows, setup};
 }
 
 std::vector<std::string> KnobNames(const std::vector<MethodPlan>& plans) {

@@ -28,7 +28,7 @@ struct Knob {
   std::vector<std::string> values;
 };
 
-enum class Method { kBakedAo, kConeAo, kAntialiasing, kShadows };
+enum class Method { kBakedAo, kConeAo, kAntialiasing, kShadows, kSetupPrecision };
 
 struct MethodPlan {
   Method method;
@@ -100,6 +100,7 @@ struct MethodResult {
   std::vector<Row> rows;
   std::string errorName, p95Name;  // what `error` and `errorP95` measure, for the CSV and plots
   std::string reference;           // the ground truth, in words (rays, its standard error, ...)
+  std::string detail;              // Markdown for the summary beyond the table (per-case errors), or empty
   bool referenceReached = true;    // the ground truth is as precise as the study asked
 };
 

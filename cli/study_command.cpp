@@ -36,7 +36,9 @@ constexpr const char* kStudyHelp =
     "the two that interact (baked: ao-patch x ao-map; cone: cones x ao-grid; shadows: pcf-samples x "
     "pcf-pretest). Times are the frame's own per-pass profile (median of --repeats); errors are "
     "against a ground truth of the same frames: the ray-traced reference AO (baked, cone), 256 "
-    "samples a pixel on silhouette pixels (ssaa), 256 PCF taps on an 8192^2 map (shadows).\n"
+    "samples a pixel on silhouette pixels (ssaa), 256 PCF taps on an 8192^2 map (shadows), the "
+    "double-precision reference ray caster with the molecule also moved 1e4 and 1e5 A from the origin "
+    "(setup-precision).\n"
     "DIR gets METHOD.csv per method, summary.md and METHOD.png (error against cost, the Pareto "
     "front joined, the shipped default circled; scripts/study_plot.py, python3-matplotlib). "
     "A bad option or molecule writes nothing.";
@@ -137,6 +139,7 @@ std::string MethodSummary(const study::MethodResult& r) {
   if (const study::Row* d = DefaultRow(r))
     md += "\nShipped default: error " + Format("%.5f", d->error.mean) + ", " +
           (d->front ? "on the front." : "NOT on the front (another point is both cheaper and more accurate).") + "\n";
+  if (!r.detail.empty()) md += "\n" + r.detail;
   md += "\n![" + r.plan.name + "](" + r.plan.name + ".png)\n";
   return md;
 }

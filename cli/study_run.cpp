@@ -7,14 +7,20 @@
 //     a pixel, the box filter the SSAA resolve uses), on the pixels more than one surface covers;
 //   shadows: the PCF shadow factor per pixel (the renderer's own buffer, kept in
 //     FrameResources::shadow: it is no AOV) against 256 taps with no pre-test on an 8192² map.
+//   setup precision: the visible primitive and its depth per pixel against the double-precision
+//     reference ray caster (raster/reference_raycaster.h), on the views as given and with the
+//     molecule and camera moved far from the origin, where float positions lose their digits.
 #include <algorithm>
 #include <cmath>
+#include <glm/vec3.hpp>
+#include <iterator>
 #include <limits>
 
 #include "cli/study.h"
 #include "effects/frame_renderer.h"
 #include "effects/pass_list.h"
 #include "raster/gbuffer.h"
+#include "raster/reference_raycaster.h"
 
 namespace softmol::cli::study {
 namespace {
@@ -29,6 +35,7 @@ constexpr double kShadowThreshold = 1.0 / 255.0;
 struct Output {
   std::vector<float> values;
   std::vector<uint8_t> mask;
+  std::vector<uint32_t> id;  // the setup-precision method's visible primitives
 };
 
 RenderArgs PointArgs(const StudyOptions& o, const MethodPlan& plan, const SweepPoint& p) {
@@ -55,6 +62,10 @@ effects::RenderOptions MethodOptions(Method m, const RenderArgs& a, const raster
     o.aovs = effects::kAovAo | effects::kAovId;
   }
   if (m == Method::kShadows) o.shadows = true;
+  if (m == Method::kSetupPrecision) {
+    o.color = false;
+    o.aovs = effects::kAovDepth | effects::kAovId;
+  }
   return o;
 }
 
@@ -73,12 +84,15 @@ std::vector<uint8_t> CoveredMask(const raster::GBuffer& g) {
 Output Keep(Method m, const effects::RenderedFrame& f, const effects::FrameResources& res) {
   if (m == Method::kShadows) return {res.shadow, CoveredMask(res.gbuffer)};
   if (m == Method::kAntialiasing) return {std::vector<float>(f.rgba.begin(), f.rgba.end()), {}};
+  if (m == Method::kSetupPrecision) return {f.depth, VisibleMask(f.id), f.id};
   return {f.ao, VisibleMask(f.id)};
 }
 
-// The passes whose time the method's frame pays (SSAA changes every pass: the whole frame).
+// The passes whose time the method's frame pays (SSAA changes every pass: the whole frame; the
+// setup precision only the G-buffer's setup stage).
 double FrameMs(Method m, const effects::RenderedFrame& f) {
   if (m == Method::kAntialiasing) return f.totalMs;
+  if (m == Method::kSetupPrecision) return f.rasterStats.setupMs;
   double ms = 0;
   for (const effects::PassTiming& p : f.passes) {
     const bool own = m == Method::kBakedAo  ? p.name == "baked ao lookup"
@@ -130,6 +144,7 @@ Output Concatenate(const std::vector<Output>& views) {
   for (const Output& v : views) {
     all.values.insert(all.values.end(), v.values.begin(), v.values.end());
     all.mask.insert(all.mask.end(), v.mask.begin(), v.mask.end());
+    all.id.insert(all.id.end(), v.id.begin(), v.id.end());
   }
   return all;
 }
@@ -320,14 +335,122 @@ void ScoreShadows(MethodResult& result, const std::vector<std::vector<Output>>& 
                      "renderer's per-sample shadow buffer)";
 }
 
+// --- setup precision: the double-precision reference ray caster --------------------------------
+
+// Where the molecule is moved (Å along (1, −1, 1)): as given, the PDB format's largest
+// coordinates, and a capsid's world (tests/support/scenes.h has a shell there too).
+constexpr double kSetupOffsets[] = {0.0, 1e4, 1e5};
+
+// The study's scene and views moved by `offset`, or (offset 0) the study's own.
+struct SetupCase {
+  double offset = 0;
+  raster::PrimitiveScene moved;
+  const raster::PrimitiveScene* scene = nullptr;
+  std::vector<raster::Camera> views;
+};
+
+void Translate(std::vector<double>& x, std::vector<double>& y, std::vector<double>& z, const glm::dvec3& d) {
+  for (size_t i = 0; i < x.size(); ++i) x[i] += d.x, y[i] += d.y, z[i] += d.z;
+}
+
+std::vector<SetupCase> SetupCases(const StudyInput& in) {
+  std::vector<SetupCase> cases(std::size(kSetupOffsets));
+  for (size_t c = 0; c < cases.size(); ++c) {
+    SetupCase& k = cases[c];
+    k.offset = kSetupOffsets[c];
+    k.views = in.views;
+    k.scene = in.scene;
+    if (k.offset == 0.0) continue;
+    const glm::dvec3 d = k.offset * glm::dvec3(1.0, -1.0, 1.0);
+    k.moved = *in.scene;
+    Translate(k.moved.spheres.x, k.moved.spheres.y, k.moved.spheres.z, d);
+    Translate(k.moved.cylinders.x0, k.moved.cylinders.y0, k.moved.cylinders.z0, d);
+    Translate(k.moved.cylinders.x1, k.moved.cylinders.y1, k.moved.cylinders.z1, d);
+    Translate(k.moved.ellipsoids.x, k.moved.ellipsoids.y, k.moved.ellipsoids.z, d);
+    k.scene = &k.moved;
+    for (raster::Camera& cam : k.views) cam.eye += d, cam.target += d;
+  }
+  return cases;
+}
+
+// Every case's views end to end; the times are the unmoved case's (the same work).
+Measured MeasureSetupPoint(const std::vector<SetupCase>& cases, const effects::RenderOptions& o, int repeats) {
+  Measured out;
+  for (size_t c = 0; c < cases.size(); ++c) {
+    Measured m = MeasurePoint(Method::kSetupPrecision, {cases[c].scene, cases[c].views}, o, c == 0 ? repeats : 1);
+    if (c == 0) out.row = std::move(m.row);
+    for (Output& v : m.views) out.views.push_back(std::move(v));
+  }
+  return out;
+}
+
+// One case's disagreement with the reference: pixels covered by either, pixels whose visible
+// primitive differs, and |depth − reference| where both see the same primitive.
+struct SetupError {
+  size_t covered = 0, differ = 0;
+  std::vector<double> depthError;
+  void Add(const Output& view, const raster::ReferenceImage& ref) {
+    for (int row = 0; row < ref.height; ++row)
+      for (int x = 0; x < ref.width; ++x) {
+        const size_t i = size_t(row) * size_t(ref.width) + size_t(x);
+        const size_t r = ref.Index(x, ref.height - 1 - row);  // the AOVs' rows top-down, the reference's bottom-up
+        if (view.id[i] == raster::kNoPrimitive && ref.id[r] == raster::kNoPrimitive) continue;
+        ++covered;
+        if (view.id[i] != ref.id[r]) ++differ;
+        else depthError.push_back(std::fabs(double(view.values[i]) - ref.depth[r]));
+      }
+  }
+  double Fraction() const { return covered ? double(differ) / double(covered) : 0.0; }
+  double MeanDepth() const {
+    double sum = 0;
+    for (double e : depthError) sum += e;
+    return depthError.empty() ? 0.0 : sum / double(depthError.size());
+  }
+};
+
+void ScoreSetup(MethodResult& result, const std::vector<std::vector<Output>>& outputs,
+                const std::vector<SetupCase>& cases) {
+  std::vector<raster::ReferenceImage> refs;  // case-major, as MeasureSetupPoint keeps the views
+  for (const SetupCase& c : cases)
+    for (const raster::Camera& cam : c.views) refs.push_back(raster::RayCastReference(*c.scene, cam));
+  std::string table = "Per case (the molecule and camera moved along (1, -1, 1) by the offset):\n\n"
+                      "| point | offset Å | coverage error | mean depth error Å | p95 depth error Å |\n"
+                      "|---|---:|---:|---:|---:|\n";
+  for (size_t i = 0; i < result.rows.size(); ++i) {
+    SetupError all;
+    for (size_t c = 0, v = 0; c < cases.size(); ++c) {
+      SetupError one;
+      for (size_t k = 0; k < cases[c].views.size(); ++k, ++v) one.Add(outputs[i][v], refs[v]);
+      char line[200];
+      std::snprintf(line, sizeof line, "| %s | %.0e | %.6f | %.3g | %.3g |\n", result.rows[i].label.c_str(),
+                    cases[c].offset, one.Fraction(), one.MeanDepth(), Percentile(one.depthError, 0.95));
+      table += line;
+      all.covered += one.covered, all.differ += one.differ;
+      all.depthError.insert(all.depthError.end(), one.depthError.begin(), one.depthError.end());
+    }
+    Row& row = result.rows[i];
+    row.error.count = all.covered;
+    row.error.mean = all.Fraction();
+    row.error.p95 = row.errorP95 = Percentile(all.depthError, 0.95);
+  }
+  result.detail = table;
+  result.errorName = "fraction of covered pixels whose visible primitive differs from the reference";
+  result.p95Name = "p95 |depth - reference| (Å) where both see the same primitive";
+  result.reference = "the double-precision reference ray caster (every pixel's ray against every primitive, no "
+                     "boxes), on the views as given and with the molecule and camera moved 1e4 and 1e5 Å from the "
+                     "origin; the cost is the G-buffer's setup stage";
+}
+
 // Every method's errors against its ground truth; the AO methods share one reference.
 void ScoreAll(const std::vector<MethodPlan>& plans, std::vector<MethodResult>& results,
-              std::vector<std::vector<std::vector<Output>>>& outputs, const StudyInput& in, const StudyOptions& so) {
+              std::vector<std::vector<std::vector<Output>>>& outputs, const StudyInput& in, const StudyOptions& so,
+              const std::vector<SetupCase>& setupCases) {
   std::vector<MethodResult*> aoResults;
   std::vector<std::vector<Output>> aoOutputs;  // per AO method and point: its views end to end
   for (size_t m = 0; m < plans.size(); ++m) {
     if (plans[m].method == Method::kAntialiasing) ScoreAa(results[m], outputs[m], AaReference(in, so));
     if (plans[m].method == Method::kShadows) ScoreShadows(results[m], outputs[m], in, so);
+    if (plans[m].method == Method::kSetupPrecision) ScoreSetup(results[m], outputs[m], setupCases);
     if (plans[m].method != Method::kBakedAo && plans[m].method != Method::kConeAo) continue;
     aoResults.push_back(&results[m]);
     std::vector<Output> points;
@@ -354,6 +477,8 @@ std::vector<MethodResult> RunStudy(const std::vector<MethodPlan>& plans, const S
   std::vector<std::vector<std::vector<Output>>> outputs(plans.size());  // method, point, view
   size_t total = 0, done = 0;
   for (const MethodPlan& p : plans) total += SweepPoints(p, Defaults(p)).size();
+  const bool setup = std::any_of(plans.begin(), plans.end(), [](const auto& p) { return p.method == Method::kSetupPrecision; });
+  const std::vector<SetupCase> setupCases = setup ? SetupCases(in) : std::vector<SetupCase>();
   for (size_t m = 0; m < plans.size(); ++m) {
     MethodResult& r = results[m];
     r.plan = plans[m];
@@ -362,7 +487,9 @@ std::vector<MethodResult> RunStudy(const std::vector<MethodPlan>& plans, const S
       const std::string label = Label(plans[m], r.defaults, point);
       if (so.progress) so.progress(done++, total, plans[m].name, label);
       const RenderArgs a = PointArgs(so, plans[m], point);
-      Measured measured = MeasurePoint(plans[m].method, in, MethodOptions(plans[m].method, a, *in.scene), so.repeats);
+      const effects::RenderOptions o = MethodOptions(plans[m].method, a, *in.scene);
+      Measured measured = plans[m].method == Method::kSetupPrecision ? MeasureSetupPoint(setupCases, o, so.repeats)
+                                                                    : MeasurePoint(plans[m].method, in, o, so.repeats);
       measured.row.point = point;
       measured.row.label = label;
       r.rows.push_back(std::move(measured.row));
@@ -370,7 +497,7 @@ std::vector<MethodResult> RunStudy(const std::vector<MethodPlan>& plans, const S
     }
   }
   if (so.progress) so.progress(done, total, "reference", "ground truth");
-  ScoreAll(plans, results, outputs, in, so);
+  ScoreAll(plans, results, outputs, in, so, setupCases);
   for (MethodResult& r : results) MarkFront(r);
   return results;
 }

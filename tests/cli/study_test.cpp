@@ -132,7 +132,8 @@ std::vector<MethodPlan> TinyPlans() {
           {Method::kConeAo, "cone-ao", {{"cones", {"3", "9"}}, {"ao-grid", {"32", "128"}}}, 0, 1, 1},
           {Method::kAntialiasing, "antialiasing", {{"ssaa", {"1", "4"}}}},
           {Method::kShadows, "shadows",
-           {{"pcf-samples", {"8", "64"}}, {"pcf-pretest", {"8", "0"}}, {"shadow-map", {"512", "2048"}}}, 0, 1, 1}};
+           {{"pcf-samples", {"8", "64"}}, {"pcf-pretest", {"8", "0"}}, {"shadow-map", {"512", "2048"}}}, 0, 1, 1},
+          {Method::kSetupPrecision, "setup-precision", {{"setup-precision", {"float", "double"}}}}};
 }
 
 bool Sanitized() {
