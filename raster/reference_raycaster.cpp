@@ -185,9 +185,167 @@ Hit EllipsoidHit(const Ray& ray, const dvec3& c, const glm::dmat3& A, double nea
   return h;
 }
 
+// The primitives in eye space (camera-relative, double), in id order: spheres, cylinders,
+// ellipsoids.
+struct EyeScene {
+  std::vector<dvec3> sphere, cylinder0, cylinder1, ellipsoid;
+  std::vector<glm::dmat3> axes;
+  std::vector<uint8_t> drawable;  // per id: a positive radius, a non-flat ellipsoid
+  size_t size() const { return drawable.size(); }
+};
+
+EyeScene ToEyeSpace(const PrimitiveScene& scene, const detail::ViewSetup& v) {
+  EyeScene e;
+  const auto& S = scene.spheres;
+  const auto& Cy = scene.cylinders;
+  const auto& El = scene.ellipsoids;
+  e.drawable.reserve(scene.size());
+  for (size_t i = 0; i < S.size(); ++i) {
+    e.sphere.push_back(v.ToEye(S.x[i], S.y[i], S.z[i]));
+    e.drawable.push_back(S.radius[i] > 0);
+  }
+  for (size_t i = 0; i < Cy.size(); ++i) {
+    e.cylinder0.push_back(v.ToEye(Cy.x0[i], Cy.y0[i], Cy.z0[i]));
+    e.cylinder1.push_back(v.ToEye(Cy.x1[i], Cy.y1[i], Cy.z1[i]));
+    e.drawable.push_back(Cy.radius[i] > 0);
+  }
+  for (size_t i = 0; i < El.size(); ++i) {
+    e.ellipsoid.push_back(v.ToEye(El.x[i], El.y[i], El.z[i]));
+    glm::dmat3 a;
+    for (int k = 0; k < 3; ++k) {
+      const dvec3 w(El.axes[i][3 * k], El.axes[i][3 * k + 1], El.axes[i][3 * k + 2]);
+      a[k] = dvec3(glm::dot(v.right, w), glm::dot(v.up, w), glm::dot(v.back, w));
+    }
+    e.axes.push_back(a);
+    e.drawable.push_back(std::abs(glm::determinant(a)) >
+                         1e-9 * glm::length(a[0]) * glm::length(a[1]) * glm::length(a[2]));
+  }
+  return e;
+}
+
+// The eye-space box holding primitive `id` (a sphere's c ± r, a cylinder's ends ± r, an
+// ellipsoid's c ± the row norms of its semi-axis matrix).
+void PrimitiveBox(const PrimitiveScene& scene, const EyeScene& e, size_t id, dvec3& lo, dvec3& hi) {
+  const size_t nS = e.sphere.size(), nC = e.cylinder0.size();
+  if (id < nS) {
+    const double r = scene.spheres.radius[id];
+    lo = e.sphere[id] - r, hi = e.sphere[id] + r;
+  } else if (id < nS + nC) {
+    const size_t i = id - nS;
+    const double r = scene.cylinders.radius[i];
+    lo = glm::min(e.cylinder0[i], e.cylinder1[i]) - r, hi = glm::max(e.cylinder0[i], e.cylinder1[i]) + r;
+  } else {
+    const size_t i = id - nS - nC;
+    const glm::dmat3& a = e.axes[i];
+    dvec3 ext;
+    for (int k = 0; k < 3; ++k) ext[k] = std::sqrt(a[0][k] * a[0][k] + a[1][k] * a[1][k] + a[2][k] * a[2][k]);
+    lo = e.ellipsoid[i] - ext, hi = e.ellipsoid[i] + ext;
+  }
+}
+
+// Pixels whose rays can meet anything inside the eye-space box [lo, hi], widened by a pixel
+// each way (only a speed-up: the rays then test each primitive exactly as they would without
+// it). In perspective the projections of the box's corners bound the projection of the box
+// while it lies wholly in front of the eye plane; otherwise, or for non-finite bounds, the
+// whole screen.
+struct PixelRect {
+  int x0, y0, x1, y1;  // inclusive; empty when x1 < x0 or y1 < y0
+};
+
+PixelRect CoverRect(const detail::ViewSetup& v, const dvec3& lo, const dvec3& hi) {
+  const PixelRect all{0, 0, v.width - 1, v.height - 1};
+  double u0 = lo.x, u1 = hi.x, w0 = lo.y, w1 = hi.y;
+  if (!v.ortho) {
+    if (!(hi.z < 0.0)) return all;
+    u0 = w0 = kInf, u1 = w1 = -kInf;
+    for (const double z : {lo.z, hi.z})
+      for (const double x : {lo.x, hi.x}) u0 = std::min(u0, x / -z), u1 = std::max(u1, x / -z);
+    for (const double z : {lo.z, hi.z})
+      for (const double y : {lo.y, hi.y}) w0 = std::min(w0, y / -z), w1 = std::max(w1, y / -z);
+  }
+  if (!(std::isfinite(u0) && std::isfinite(u1) && std::isfinite(w0) && std::isfinite(w1))) return all;
+  // Pixel p's ray is at u = ((p + 0.5) − half)·scale (PixelToRay).
+  auto pixel = [&](double u, double half, double limit, double grow) {
+    return std::clamp(u / v.pixelScale + half - 0.5 + grow, -2.0, limit + 2.0);
+  };
+  return {int(std::floor(pixel(u0, v.halfWidth, v.width, -1.0))), int(std::floor(pixel(w0, v.halfHeight, v.height, -1.0))),
+          int(std::ceil(pixel(u1, v.halfWidth, v.width, 1.0))), int(std::ceil(pixel(w1, v.halfHeight, v.height, 1.0)))};
+}
+
+constexpr int kBinTile = 16;  // pixels a side
+
+// Per 16×16-pixel tile, the ids of the drawable primitives that may cover it, ascending (the
+// order the rays test them in, so that exact depth ties resolve as without bins).
+std::vector<std::vector<uint32_t>> BinPrimitives(const PrimitiveScene& scene, const EyeScene& e,
+                                                 const detail::ViewSetup& v, int tilesX, int tilesY) {
+  std::vector<std::vector<uint32_t>> tiles(size_t(tilesX) * size_t(tilesY));
+  for (size_t id = 0; id < e.size(); ++id) {
+    if (!e.drawable[id]) continue;
+    dvec3 lo, hi;
+    PrimitiveBox(scene, e, id, lo, hi);
+    const PixelRect r = CoverRect(v, lo, hi);
+    const int tx0 = std::max(r.x0, 0) / kBinTile, tx1 = std::min(r.x1, v.width - 1) / kBinTile;
+    const int ty0 = std::max(r.y0, 0) / kBinTile, ty1 = std::min(r.y1, v.height - 1) / kBinTile;
+    if (r.x1 < 0 || r.y1 < 0 || r.x0 > v.width - 1 || r.y0 > v.height - 1) continue;
+    for (int ty = ty0; ty <= ty1; ++ty)
+      for (int tx = tx0; tx <= tx1; ++tx) tiles[size_t(ty) * size_t(tilesX) + size_t(tx)].push_back(uint32_t(id));
+  }
+  return tiles;
+}
+
+// The nearest hit of pixel (x, y) among `ids` and whether the float kernels may disagree there.
+void CastPixel(const PrimitiveScene& scene, const EyeScene& e, const detail::ViewSetup& v,
+               const std::vector<uint32_t>& ids, int x, int y, ReferenceImage& img) {
+  const double u = PixelToRay(x, v.halfWidth, v.pixelScale);
+  const double w = PixelToRay(y, v.halfHeight, v.pixelScale);
+  Ray ray;
+  if (v.ortho) {
+    ray.o = dvec3(u, w, 0.0);
+    ray.d = dvec3(0.0, 0.0, -1.0);
+  } else {
+    ray.o = dvec3(0.0);
+    ray.d = dvec3(u, w, -1.0);
+  }
+  Hit best;
+  uint32_t bestId = 0xFFFFFFFFu;
+  double second = kInf, ambiguousT = kInf;
+  const size_t nS = e.sphere.size(), nC = e.cylinder0.size();
+  for (const uint32_t id : ids) {
+    Hit h;
+    if (id < nS) {
+      h = SphereHit(ray, e.sphere[id], scene.spheres.radius[id], v.nearPlane, v.farPlane);
+    } else if (id < nS + nC) {
+      const size_t i = id - nS;
+      h = CylinderHit(ray, e.cylinder0[i], e.cylinder1[i], scene.cylinders.radius[i], v.nearPlane, v.farPlane);
+    } else {
+      const size_t i = id - nS - nC;
+      h = EllipsoidHit(ray, e.ellipsoid[i], e.axes[i], v.nearPlane, v.farPlane);
+    }
+    if (h.ambiguous) ambiguousT = std::min(ambiguousT, h.tCandidate);
+    if (!h.valid) continue;
+    if (h.t < best.t) {
+      second = best.t;
+      best = h;
+      bestId = id;
+    } else {
+      second = std::min(second, h.t);
+    }
+  }
+  const size_t k = img.Index(x, y);
+  img.depth[k] = best.t;
+  img.id[k] = bestId;
+  img.depthTol[k] = best.tol;
+  img.normal[3 * k] = best.normal.x;
+  img.normal[3 * k + 1] = best.normal.y;
+  img.normal[3 * k + 2] = best.normal.z;
+  // Ambiguous when a boundary case could be in front of the winner, or two hits tie.
+  const bool tie = best.valid && second - best.t <= 2.0 * best.tol + 1e-5 * best.t;
+  img.ambiguous[k] = (ambiguousT < kInf && ambiguousT <= best.t + best.tol + 1e-5 * std::abs(best.t)) || tie;
+}
+
 }  // namespace
 
-ReferenceImage RayCastReference(const PrimitiveScene& scene, const Camera& cam) {
+ReferenceImage RayCastReference(const PrimitiveScene& scene, const Camera& cam, bool bin) {
   const detail::ViewSetup v = detail::MakeViewSetup(cam, scene);
   ReferenceImage img;
   img.width = cam.width;
@@ -198,77 +356,24 @@ ReferenceImage RayCastReference(const PrimitiveScene& scene, const Camera& cam) 
   img.id.assign(n, 0xFFFFFFFFu);
   img.normal.assign(3 * n, 0.0);
   img.ambiguous.assign(n, 0);
-  const auto& S = scene.spheres;
-  const auto& Cy = scene.cylinders;
-  std::vector<dvec3> sc(S.size()), c0(Cy.size()), c1(Cy.size());
-  for (size_t i = 0; i < S.size(); ++i) sc[i] = v.ToEye(S.x[i], S.y[i], S.z[i]);
-  for (size_t i = 0; i < Cy.size(); ++i) {
-    c0[i] = v.ToEye(Cy.x0[i], Cy.y0[i], Cy.z0[i]);
-    c1[i] = v.ToEye(Cy.x1[i], Cy.y1[i], Cy.z1[i]);
+  const EyeScene e = ToEyeSpace(scene, v);
+  const int tilesX = (cam.width + kBinTile - 1) / kBinTile, tilesY = (cam.height + kBinTile - 1) / kBinTile;
+  std::vector<std::vector<uint32_t>> tiles;
+  if (bin) {
+    tiles = BinPrimitives(scene, e, v, tilesX, tilesY);
+  } else {  // every drawable primitive in every tile
+    std::vector<uint32_t> every;
+    for (size_t id = 0; id < e.size(); ++id)
+      if (e.drawable[id]) every.push_back(uint32_t(id));
+    tiles.assign(size_t(tilesX) * size_t(tilesY), every);
   }
-  const auto& El = scene.ellipsoids;
-  std::vector<dvec3> ec(El.size());
-  std::vector<glm::dmat3> ea(El.size());
-  std::vector<uint8_t> eok(El.size());
-  for (size_t i = 0; i < El.size(); ++i) {
-    ec[i] = v.ToEye(El.x[i], El.y[i], El.z[i]);
-    for (int k = 0; k < 3; ++k) {
-      const dvec3 w(El.axes[i][3 * k], El.axes[i][3 * k + 1], El.axes[i][3 * k + 2]);
-      ea[i][k] = dvec3(glm::dot(v.right, w), glm::dot(v.up, w), glm::dot(v.back, w));
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size()), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t t = range.begin(); t != range.end(); ++t) {
+      const int tx = int(t % size_t(tilesX)), ty = int(t / size_t(tilesX));
+      for (int y = ty * kBinTile; y < std::min(cam.height, (ty + 1) * kBinTile); ++y)
+        for (int x = tx * kBinTile; x < std::min(cam.width, (tx + 1) * kBinTile); ++x)
+          CastPixel(scene, e, v, tiles[t], x, y, img);
     }
-    eok[i] = std::abs(glm::determinant(ea[i])) >
-             1e-9 * glm::length(ea[i][0]) * glm::length(ea[i][1]) * glm::length(ea[i][2]);
-  }
-  tbb::parallel_for(tbb::blocked_range<int>(0, cam.height), [&](const tbb::blocked_range<int>& rows) {
-    for (int y = rows.begin(); y != rows.end(); ++y)
-      for (int x = 0; x < cam.width; ++x) {
-        const double u = PixelToRay(x, v.halfWidth, v.pixelScale);
-        const double w = PixelToRay(y, v.halfHeight, v.pixelScale);
-        Ray ray;
-        if (v.ortho) {
-          ray.o = dvec3(u, w, 0.0);
-          ray.d = dvec3(0.0, 0.0, -1.0);
-        } else {
-          ray.o = dvec3(0.0);
-          ray.d = dvec3(u, w, -1.0);
-        }
-        Hit best;
-        uint32_t bestId = 0xFFFFFFFFu;
-        double second = kInf, ambiguousT = kInf;
-        auto consider = [&](const Hit& h, uint32_t id) {
-          if (h.ambiguous) ambiguousT = std::min(ambiguousT, h.tCandidate);
-          if (!h.valid) return;
-          if (h.t < best.t) {
-            second = best.t;
-            best = h;
-            bestId = id;
-          } else {
-            second = std::min(second, h.t);
-          }
-        };
-        for (size_t i = 0; i < S.size(); ++i)
-          if (S.radius[i] > 0)
-            consider(SphereHit(ray, sc[i], S.radius[i], v.nearPlane, v.farPlane), uint32_t(i));
-        for (size_t i = 0; i < Cy.size(); ++i)
-          if (Cy.radius[i] > 0)
-            consider(CylinderHit(ray, c0[i], c1[i], Cy.radius[i], v.nearPlane, v.farPlane),
-                     uint32_t(S.size() + i));
-        for (size_t i = 0; i < El.size(); ++i)
-          if (eok[i])
-            consider(EllipsoidHit(ray, ec[i], ea[i], v.nearPlane, v.farPlane),
-                     uint32_t(S.size() + Cy.size() + i));
-        const size_t k = img.Index(x, y);
-        img.depth[k] = best.t;
-        img.id[k] = bestId;
-        img.depthTol[k] = best.tol;
-        img.normal[3 * k] = best.normal.x;
-        img.normal[3 * k + 1] = best.normal.y;
-        img.normal[3 * k + 2] = best.normal.z;
-        // Ambiguous when a boundary case could be in front of the winner, or two hits tie.
-        const bool tie = best.valid && second - best.t <= 2.0 * best.tol + 1e-5 * best.t;
-        img.ambiguous[k] =
-            (ambiguousT < kInf && ambiguousT <= best.t + best.tol + 1e-5 * std::abs(best.t)) || tie;
-      }
   });
   return img;
 }
