@@ -162,8 +162,40 @@ AtlasLayout MakeAtlasLayout(size_t spheres, size_t cylinders, const AtlasOptions
   return l;
 }
 
+int AtlasSideForPatch(size_t spheres, size_t cylinders, const AtlasOptions& o) {
+  const size_t k = spheres + (cylinders + size_t(o.cylindersPerPatch) - 1) / size_t(o.cylindersPerPatch);
+  const double cells = std::ceil(std::sqrt(double(std::max<size_t>(k, 1))));
+  const double side = cells * o.patchSize * (o.sphereMap == PatchKind::kCube ? 3.0 : 1.0);
+  return int(std::clamp(side, 2.0, 1e9));
+}
+
+namespace {
+
+// The automatic patch side of the atlas in `o`, 0 when not even 2 texels fit.
+int FittedPatch(size_t spheres, size_t cylinders, const AtlasOptions& o) {
+  try {
+    return MakeAtlasLayout(spheres, cylinders, o).patchSize;
+  } catch (const AtlasTooSmall&) {
+    return 0;
+  }
+}
+
+// `patch`-texel patches in the atlas just big enough for them.
+AtlasOptions WithPatch(size_t spheres, size_t cylinders, AtlasOptions o, int patch) {
+  o.patchSize = patch;
+  o.textureSide = AtlasSideForPatch(spheres, cylinders, o);
+  return o;
+}
+
+}  // namespace
+
 AtlasOptions ChooseAtlas(size_t spheres, size_t cylinders, AtlasOptions o, int maxSide) {
   o.patchSize = 0;
+  const int fitted = FittedPatch(spheres, cylinders, o);
+  if (fitted > kAutoPatchCap) return WithPatch(spheres, cylinders, o, kAutoPatchCap);
+  if (fitted >= kAutoPatchFloor) return o;
+  const AtlasOptions floor = WithPatch(spheres, cylinders, o, kAutoPatchFloor);
+  if (floor.textureSide <= std::min(kAutoFloorSide, maxSide)) return floor;
   const int start = std::max(o.textureSide, 2);
   for (int side = start; side <= maxSide; side *= 2) {
     o.textureSide = side;

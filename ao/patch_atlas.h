@@ -53,12 +53,25 @@ struct AtlasTooSmall : std::invalid_argument {
 
 // Throws std::invalid_argument naming the option out of range, or AtlasTooSmall.
 AtlasLayout MakeAtlasLayout(size_t spheres, size_t cylinders, const AtlasOptions& options);
-// When neither the texture side nor the patch size is given: the smallest power-of-two side
-// from options.textureSide (1024) up to maxSide whose automatic patches are at least
-// kMinAutoPatch texels, else the largest side that fits any patch (maxSide: 16384² floats is
-// 1 GiB, the memory bound; 1.03 M atoms get 8192² with 6-texel patches). Returns the options
-// with textureSide set; throws AtlasTooSmall when not even maxSide fits.
+// The smallest square side whose cells hold every patch of options.patchSize (> 0): ⌈√k⌉
+// cells a row for k patches (the cube map's cells are 3n × 2n, so its rows hold them too).
+int AtlasSideForPatch(size_t spheres, size_t cylinders, const AtlasOptions& options);
+
+// When neither the texture side nor the patch size is given. What `softmol study` measured
+// (docs/study, docs/PERFORMANCE.md): the error stops falling above ~32 texels a patch while the
+// bake's texel pass keeps growing (pept: 32 texels give the error of 99 in a quarter of the
+// time), and below ~16 it rises (1tii: 16 texels beat 13 at the same cost). So:
+//   - patches of the 1024² atlas (options.textureSide) in [kAutoPatchFloor, kAutoPatchCap]: it;
+//   - larger: kAutoPatchCap-texel patches in the atlas just big enough for them;
+//   - smaller: kAutoPatchFloor-texel patches in the atlas just big enough, while that stays
+//     within kAutoFloorSide² (64 MB of floats);
+//   - else the smallest power-of-two side up to maxSide whose automatic patches are at least
+//     kMinAutoPatch texels, or the largest side that fits any patch (maxSide: 16384² floats is
+//     1 GiB, the memory bound; 1.03 M atoms get 8192² with 6-texel patches).
+// Returns the options with textureSide (and a patch size where one is chosen) set; throws
+// AtlasTooSmall when not even maxSide fits.
 constexpr int kMinAutoPatch = 4;
+constexpr int kAutoPatchFloor = 16, kAutoPatchCap = 32, kAutoFloorSide = 4096;
 AtlasOptions ChooseAtlas(size_t spheres, size_t cylinders, AtlasOptions options, int maxSide = 16384);
 
 PatchRect SpherePatch(const AtlasLayout& layout, size_t sphere);

@@ -23,9 +23,9 @@ io::ParamTable<BakeFlags> BakeParams() {
       IntParam<BakeFlags>("ao-directions", [](auto& f) -> auto& { return f.directions; }, 2, 16384, "",
                           "Baked AO: light directions, even (pairs d, -d)", "ao bake"),
       IntParam<BakeFlags>("ao-patch", [](auto& f) -> auto& { return f.patch; }, 0, 4096, "texels",
-                          "Baked AO: patch side, >= 2 (0: the largest that fits the texture)", "ao bake"),
+                          "Baked AO: patch side, >= 2 (0: automatic, 16 to 32 texels where memory allows; with --ao-texture, the largest that fits)", "ao bake"),
       IntParam<BakeFlags>("ao-texture", [](auto& f) -> auto& { return f.texture; }, 0, 32768, "texels",
-                          "Baked AO: atlas side, >= 2 (0: 1024, or just enough for --ao-patch)", "ao bake"),
+                          "Baked AO: atlas side, >= 2 (0: just enough for the patches)", "ao bake"),
       IntParam<BakeFlags>("ao-map", [](auto& f) -> auto& { return f.map; }, 16, 8192, "texels",
                           "Baked AO: side of each mid-surface shadow map", "ao bake"),
       RealParam<BakeFlags>("ao-bias", [](auto& f) -> auto& { return f.bias; }, {0.0, 100.0}, "Å",
@@ -59,26 +59,25 @@ ao::BakeOptions MakeBakeOptions(const BakeFlags& f, const raster::PrimitiveScene
   o.atlas.sphereMap = f.sphereMap;
   if (f.texture == 0 && f.patch == 0) {
     // Neither given: an atlas that fits the structure (ao/patch_atlas.h ChooseAtlas), said when
-    // it is not the default 1024².
+    // the structure outgrew the 16-texel patches' bound and the atlas grew for it (its memory is
+    // then the user's to weigh).
     try {
       o.atlas = ao::ChooseAtlas(scene.spheres.size(), scene.cylinders.size(), o.atlas);
     } catch (const ao::AtlasTooSmall& e) {
       throw io::InputError({TooSmallFlag(f)}, e.what());
     }
-    if (o.atlas.textureSide != ao::AtlasOptions{}.textureSide)
+    if (o.atlas.patchSize == 0 && o.atlas.textureSide != ao::AtlasOptions{}.textureSide)
       std::fprintf(stderr, "softmol: baked AO: a %d² atlas for %zu atoms and %zu bonds (--ao-texture to choose)\n",
                    o.atlas.textureSide, scene.spheres.size(), scene.cylinders.size());
   } else if (f.texture > 0) {
     o.atlas.textureSide = f.texture;
   } else if (f.patch > 0) {
     // Just enough square cells (n × n, or 3n × 2n for the cube map) for every patch.
-    const size_t k = scene.spheres.size() + (scene.cylinders.size() + 1) / 2;
-    const double cells = std::ceil(std::sqrt(double(std::max<size_t>(k, 1))));
-    const double side = cells * f.patch * (o.atlas.sphereMap == ao::PatchKind::kCube ? 3.0 : 1.0);
+    const int side = ao::AtlasSideForPatch(scene.spheres.size(), scene.cylinders.size(), o.atlas);
     if (side > 32768)
-      throw io::InputError({"--ao-patch"}, std::to_string(k) + " patches of " + std::to_string(f.patch) +
-                                               " texels do not fit a 32768² texture");
-    o.atlas.textureSide = std::max(2, int(side));
+      throw io::InputError({"--ao-patch"}, std::to_string(scene.size()) + " primitives' patches of " +
+                                               std::to_string(f.patch) + " texels do not fit a 32768² texture");
+    o.atlas.textureSide = side;
   }
   try {
     (void)ao::MakeAtlasLayout(scene.spheres.size(), scene.cylinders.size(), o.atlas);

@@ -363,12 +363,28 @@ TEST(AoPatchAtlas, BilinearLookupIsSeamlessOnCylinders) {
   }
 }
 
-// --ao baked with no size given: the default 1024² while patches stay >= 4 texels, else the
-// smallest power of two that gives them 4 (the 1.03 M-atom 3J6R assembly: 8192², 6 texels),
-// up to 16384²; beyond that the largest side with any patch that fits.
+// --ao baked with no size given: the 1024² atlas's patches while they are 16 to 32 texels;
+// 32-texel patches in a smaller atlas above that, 16-texel ones in a larger one below (up to
+// 4096²); beyond that the smallest power of two that gives them 4 (the 1.03 M-atom 3J6R
+// assembly: 8192², 6 texels), up to 16384²; beyond that the largest side with any patch that fits.
 TEST(AoPatchAtlas, ChooseAtlasFitsTheStructure) {
   const AtlasOptions base;
-  EXPECT_EQ(ChooseAtlas(5684, 5800, base).textureSide, 1024);  // 1tii: the default
+  const AtlasOptions pept = ChooseAtlas(107, 0, base);  // 99 texels would fit 1024²: capped
+  EXPECT_EQ(pept.patchSize, 32);
+  EXPECT_EQ(pept.textureSide, 11 * 32);
+  EXPECT_EQ(MakeAtlasLayout(107, 0, pept).patchSize, 32);
+  const AtlasOptions mid = ChooseAtlas(2000, 0, base);  // 1024 / ⌈√2000⌉ = 22 texels: as it is
+  EXPECT_EQ(mid.textureSide, 1024);
+  EXPECT_EQ(mid.patchSize, 0);
+  EXPECT_EQ(MakeAtlasLayout(2000, 0, mid).patchSize, 22);
+  const AtlasOptions tii = ChooseAtlas(5684, 5800, base);  // 1tii: 11 texels in 1024², raised
+  EXPECT_EQ(tii.patchSize, 16);
+  EXPECT_EQ(tii.textureSide, 93 * 16);  // ⌈√(5684 + 2900)⌉ cells a row
+  EXPECT_EQ(MakeAtlasLayout(5684, 5800, tii).patchSize, 16);
+  AtlasOptions cube = base;
+  cube.sphereMap = PatchKind::kCube;
+  const AtlasOptions tiiCube = ChooseAtlas(5684, 0, cube);  // 3n × 2n cells
+  EXPECT_EQ(MakeAtlasLayout(5684, 0, tiiCube).patchSize, 16);
   const AtlasOptions big = ChooseAtlas(1032840, 1069680, base);
   EXPECT_EQ(big.textureSide, 8192);
   EXPECT_EQ(MakeAtlasLayout(1032840, 1069680, big).patchSize, 6);
