@@ -9,7 +9,10 @@ the first frame. Every configuration runs REPEAT processes and keeps, per pass, 
 medians (the least disturbed by other work on the machine); the process's CPU time over its wall
 time is kept too (how many cores it really got). Then fits, per pass, t = a*atoms + b*pixels + c
 by least squares weighted by 1/t (so the relative error is what is minimised) over the runs at the
-default thread count, and prints a Markdown section (or writes it to --out).
+default thread count, then again with a term in covered pixels, t = a*atoms + b*pixels +
+d*covered + c, for the passes whose work follows what the pixels show (cone AO, PCF): covered is
+the "covered samples" counter of the shadow runs' profiles, which have the same cameras as the
+other runs of their molecule and size. Prints a Markdown section (or writes it to --out).
 Needs python3 with numpy. Results: docs/PERFORMANCE.md, "How time grows".
 
 Run (from the repository root; ~2 minutes on 2 quiet cores, ~4 when they are shared):
@@ -22,6 +25,7 @@ ATOMS = ["data/pept.pdb", "data/il2.pdb", "data/1tii.pdb", "data/4JSV.pdb", "dat
          "data/3J6R.pdb --assembly 1"]
 SIZES = ["320x240", "640x480", "1280x960", "1920x1080", "2560x1920"]
 SETUP = ("ao bake", "occupancy pyramid")
+COVERED_PASSES = ("cone ao", "shadows", "baked ao lookup", "shading")
 REPEAT, FRAMES = 2, 7
 
 
@@ -51,21 +55,26 @@ def render(softmol, run, tmp):
     wall, r1 = time.time() - t0, resource.getrusage(resource.RUSAGE_CHILDREN)
     cpu = (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
     atoms = int(re.search(r": (\d+) atoms", out).group(1))
-    ev = [e for e in json.load(open(trace))["traceEvents"] if e.get("ph") == "X"]
+    doc = json.load(open(trace))["traceEvents"]
+    ev = [e for e in doc if e.get("ph") == "X"]
+    shadow_counters = [e for e in doc if e.get("ph") == "C" and e.get("name") == "shadow counters"]
     frames_ev = [e for e in ev if e.get("cat") == "frame"]
-    per = []  # per frame: {pass: ms}
+    per, covered = [], []  # per frame: {pass: ms}; covered samples where the shadows counted them
     for f in frames_ev:
+        inside = lambda e: f["ts"] <= e["ts"] < f["ts"] + f["dur"]
         d = {"frame": f["dur"] / 1e3}
         for e in ev:
-            if e.get("cat") == "pass" and f["ts"] <= e["ts"] < f["ts"] + f["dur"]:
+            if e.get("cat") == "pass" and inside(e):
                 d[e["name"]] = d.get(e["name"], 0) + e["dur"] / 1e3
         per.append(d)
+        covered += [e["args"]["covered samples"] for e in shadow_counters if inside(e)]
     setup = {k: per[0][k] for k in SETUP if k in per[0]}
     warm = per[1:]
     passes = {k: statistics.median(d[k] for d in warm) for k in warm[0] if "(reused)" not in k}
     return dict(mol=mol, size=size, ao=ao, shadows=shadows, threads=threads, atoms=atoms,
                 pixels=int(size.split("x")[0]) * int(size.split("x")[1]), passes=passes,
-                setup=setup, wall=wall, cores=cpu / wall, frames=len(warm))
+                setup=setup, wall=wall, cores=cpu / wall, frames=len(warm),
+                covered=statistics.median(covered[1:]) if len(covered) > 1 else None)
 
 
 def best(reps):
@@ -77,14 +86,22 @@ def best(reps):
     return p
 
 
-def fit(points, name):
-    """Weighted least squares t = a*atoms + b*pixels + c; returns a (ns/atom), b (ns/px), c (ms), errors."""
-    A = np.array([[p["atoms"], p["pixels"], 1.0] for p in points])
+def fit(points, name, terms=("atoms", "pixels")):
+    """Weighted least squares t = sum(k_i * term_i) + c; returns the k_i in ns per unit, c (ms), errors."""
+    A = np.array([[p[k] for k in terms] + [1.0] for p in points])
     t = np.array([p["passes"][name] for p in points])
     w = 1.0 / t
     coef = np.linalg.lstsq(A * w[:, None], t * w, rcond=None)[0]
     rel = np.abs(A @ coef - t) / t
-    return coef[0] * 1e6, coef[1] * 1e6, coef[2], float(np.median(rel)), float(rel.max()), len(points)
+    return [c * 1e6 for c in coef[:-1]], coef[-1], float(np.median(rel)), float(rel.max()), len(points)
+
+
+def share_covered(res):
+    """Gives each run the covered samples of a shadow run of its molecule and size (same cameras)."""
+    known = {(p["mol"], p["size"]): p["covered"] for p in res if p["covered"] is not None}
+    for p in res:
+        if p["covered"] is None:
+            p["covered"] = known.get((p["mol"], p["size"]))
 
 
 def label(p):
@@ -141,8 +158,19 @@ def report(res, load, cmdline):
             sub = [p for p in pts if k in p["passes"]]
         if len(sub) < 4:
             continue
-        a, b, c, med, mx, n = fit(sub, k)
+        (a, b), c, med, mx, n = fit(sub, k)
         L.append("| %s | %d | %.1f | %.2f | %.2f | %.0f%% | %.0f%% |" % (k, n, a, b, c, 100 * med, 100 * mx))
+    L += ["", "With a term in covered pixels, t = a·atoms + b·pixels + d·covered + c (covered: the samples "
+          "showing a surface, the shadow runs' counter for the same molecule, size and cameras; runs "
+          "without one are left out), for the passes that work per covered pixel:", ""]
+    L.append("| pass | points | a (ns/atom) | b (ns/pixel) | d (ns/covered pixel) | c (ms) | median error | max error |")
+    L.append("|---|---|---|---|---|---|---|---|")
+    for k in COVERED_PASSES:
+        sub = [p for p in pts if k in p["passes"] and p["covered"] is not None]
+        if len(sub) < 5:
+            continue
+        (a, b, d), c, med, mx, n = fit(sub, k, ("atoms", "pixels", "covered"))
+        L.append("| %s | %d | %.1f | %.2f | %.2f | %.2f | %.0f%% | %.0f%% |" % (k, n, a, b, d, c, 100 * med, 100 * mx))
     return "\n".join(L) + "\n"
 
 
@@ -163,6 +191,7 @@ def main():
                 p["mol"], p["size"], p["ao"], p["shadows"], p["threads"], p["passes"]["frame"], p["wall"],
                 p["cores"]), file=sys.stderr, flush=True)
             res.append(p)
+    share_covered(res)
     md = report(res, load, "/usr/bin/python3 bench/scaling.py --softmol " + args.softmol)
     if args.out:
         open(args.out, "w").write(md)
