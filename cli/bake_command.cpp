@@ -35,9 +35,18 @@ raster::Style ParseBakeStyle(const std::string& s) {
   throw io::InputError({"--style"}, "unknown style '" + s + "' for baking (spacefill, balls, licorice)");
 }
 
+// The bake's own options and the sizes of the styles it bakes (the tube is not baked).
+io::ParamTable<BakeArgs> BakeCommandParams() {
+  io::ParamTable<BakeArgs> t = io::Lift<BakeArgs>(BakeParams(), [](auto& a) -> auto& { return a.bake; });
+  io::ParamTable<raster::RepresentationOptions> sizes = RepresentationParams();
+  std::erase_if(sizes, [](const auto& p) { return p.name == "tube-radius" || p.name == "helix"; });
+  io::Append(t, io::Lift<BakeArgs>(sizes, [](auto& a) -> auto& { return a.rep; }));
+  return t;
+}
+
 }  // namespace
 
-BakeCommand::BakeCommand(CLI::App& app) : params_(BakeParams()) {
+BakeCommand::BakeCommand(CLI::App& app) : params_(BakeCommandParams()) {
   CLI::App* c = command_ = app.add_subcommand("bake", "Bake the ambient-occlusion atlas (Tarini et al.) to EXR");
   BakeArgs& a = args_;
   c->add_option("MOLECULE", a.molecule, "PDB or mmCIF file (plain or .gz)")->required();
@@ -52,7 +61,7 @@ BakeCommand::BakeCommand(CLI::App& app) : params_(BakeParams()) {
 BakeArgs BakeCommand::Args() {
   BakeArgs a = args_;
   params_.inputs().CollectFlags();
-  params_.Apply(a.bake);
+  params_.Apply(a);
   return a;
 }
 
@@ -63,7 +72,7 @@ int RunBake(const BakeArgs& a) {
     for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
     if (ext != ".exr") throw io::InputError({"-o"}, "the atlas is written as .exr, got '" + a.output + "'");
   }
-  raster::RepresentationOptions rep;
+  raster::RepresentationOptions rep = a.rep;
   rep.style = ParseBakeStyle(a.style);
   std::unique_ptr<tbb::global_control> threads;
   if (a.threads > 0)

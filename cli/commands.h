@@ -79,6 +79,9 @@ struct RenderArgs {
 };
 // Every option of `softmol render`, declared once: the command's own, the bake's, the passes'.
 io::ParamTable<RenderArgs> RenderParams();
+// How the styles are sized (--ball-scale, --bond-radius, ...), as PyMOL names the same settings;
+// `render` and `bake` both read them.
+io::ParamTable<raster::RepresentationOptions> RepresentationParams();
 // Adds `softmol render` with its options; the returned object collects the given values
 // (flags, then --scene) into a RenderArgs.
 class RenderCommand {
@@ -102,19 +105,20 @@ struct BakeArgs {
   std::string style = "spacefill";  // spacefill | balls | licorice
   std::string assembly;
   BakeFlags bake;                   // --ao-* (cli/bake_options.h)
+  raster::RepresentationOptions rep;  // the sizes of RepresentationParams(); rep.style from `style`
   int threads = 0;
   bool quiet = false;
 };
 class BakeCommand {
  public:
   explicit BakeCommand(CLI::App& app);
-  BakeArgs Args();  // after parsing; throws io::InputError for a bad --ao-* value
+  BakeArgs Args();  // after parsing; throws io::InputError for a bad --ao-* or size value
   CLI::App* app() const { return command_; }
 
  private:
   CLI::App* command_ = nullptr;
   BakeArgs args_;
-  CommandParams<BakeFlags> params_;
+  CommandParams<BakeArgs> params_;
 };
 int RunBake(const BakeArgs& args);
 

@@ -76,25 +76,6 @@ std::vector<std::pair<std::string, std::string>> BundleChoices(std::span<const O
   return choices;
 }
 
-// How the styles are sized: raster::RepresentationOptions, as PyMOL names the same settings.
-io::ParamTable<raster::RepresentationOptions> RepresentationParams() {
-  using io::ChoiceParam, io::RealParam;
-  using R = raster::RepresentationOptions;
-  return {
-      RealParam<R>("ball-scale", [](auto& r) -> auto& { return r.ballScale; }, {0.01, 5.0}, "",
-                   "Style balls: sphere radius as a fraction of the van der Waals radius (PyMOL sphere_scale)",
-                   "molecule"),
-      RealParam<R>("bond-radius", [](auto& r) -> auto& { return r.bondRadius; }, {0.01, 5.0}, "Å",
-                   "Styles balls and ellipsoids: bond cylinder radius", "molecule"),
-      RealParam<R>("stick-radius", [](auto& r) -> auto& { return r.licoriceRadius; }, {0.01, 5.0}, "Å",
-                   "Style licorice: stick and joint radius (PyMOL stick_radius)", "molecule"),
-      RealParam<R>("tube-radius", [](auto& r) -> auto& { return r.tube.radius; }, {0.01, 5.0}, "Å",
-                   "Style tube: radius of the backbone trace (PyMOL cartoon_tube_radius)", "molecule"),
-      ChoiceParam<R>("helix", [](auto& r) -> auto& { return r.tube.helixCylinders; },
-                     std::vector<std::pair<std::string, bool>>{{"tube", false}, {"cylinder", true}},
-                     "Style tube: helices follow the tube, or are one cylinder each along their axis", "molecule"),
-  };
-}
 
 // The options `softmol render` itself reads (files, framing, the job).
 io::ParamTable<RenderArgs> JobParams() {
@@ -210,6 +191,25 @@ io::ParamTable<RenderArgs> JobParams() {
 }
 
 }  // namespace
+
+io::ParamTable<raster::RepresentationOptions> RepresentationParams() {
+  using io::ChoiceParam, io::RealParam;
+  using R = raster::RepresentationOptions;
+  return {
+      RealParam<R>("ball-scale", [](auto& r) -> auto& { return r.ballScale; }, {0.01, 5.0}, "",
+                   "Style balls: sphere radius as a fraction of the van der Waals radius (PyMOL sphere_scale)",
+                   "molecule"),
+      RealParam<R>("bond-radius", [](auto& r) -> auto& { return r.bondRadius; }, {0.01, 5.0}, "Å",
+                   "Styles balls and ellipsoids: bond cylinder radius", "molecule"),
+      RealParam<R>("stick-radius", [](auto& r) -> auto& { return r.licoriceRadius; }, {0.01, 5.0}, "Å",
+                   "Style licorice: stick and joint radius (PyMOL stick_radius)", "molecule"),
+      RealParam<R>("tube-radius", [](auto& r) -> auto& { return r.tube.radius; }, {0.01, 5.0}, "Å",
+                   "Style tube: radius of the backbone trace (PyMOL cartoon_tube_radius)", "molecule"),
+      ChoiceParam<R>("helix", [](auto& r) -> auto& { return r.tube.helixCylinders; },
+                     std::vector<std::pair<std::string, bool>>{{"tube", false}, {"cylinder", true}},
+                     "Style tube: helices follow the tube, or are one cylinder each along their axis", "molecule"),
+  };
+}
 
 io::ParamTable<RenderArgs> RenderParams() {
   io::ParamTable<RenderArgs> t = JobParams();

@@ -46,6 +46,20 @@ TEST(CliBake, PatchSizeGivesJustEnoughTexture) {
   EXPECT_EQ(img.width % 12, 0) << "whole 3n × 2n cube cells";
 }
 
+// The styles' sizes are render's (--ball-scale, --bond-radius, --stick-radius): the atlas baked
+// for smaller balls and thinner bonds is another one.
+TEST(CliBake, StyleSizesAreRendersAndChangeTheAtlas) {
+  const auto dir = ScratchDir("bake_sizes");
+  const std::string base = "bake '" + Data("pept.pdb") + "' --style balls --ao-directions 16 --ao-map 256 -q -o '";
+  const std::string plain = (dir / "plain.exr").string(), thin = (dir / "thin.exr").string();
+  ASSERT_EQ(RunSoftmol(base + plain + "'", dir).exitCode, 0);
+  const CommandResult r = RunSoftmol(base + thin + "' --ball-scale 0.3 --bond-radius 0.1", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const io::ImageFile a = io::ReadExr(plain), b = io::ReadExr(thin);
+  ASSERT_EQ(a.width, b.width);
+  EXPECT_NE(a.channels[0].values, b.channels[0].values);
+}
+
 TEST(CliBake, BadOptionsExitTwoNamingTheOption) {
   const auto dir = ScratchDir("bake_bad");
   std::string mol = "'";  // appended piece by piece (GCC 12 -Wrestrict false positive)
@@ -65,6 +79,8 @@ TEST(CliBake, BadOptionsExitTwoNamingTheOption) {
       {"--ao-texture 8", "--ao-texture"},
       {"--ao-sphere-map sphere", "--ao-sphere-map"},
       {"--style ellipsoids", "--style"},
+      {"--ball-scale 9", "--ball-scale"},
+      {"--tube-radius 1", "--tube-radius"},  // render's only: the tube is not baked
   };
   for (const auto& c : cases) {
     std::string args = "bake ";  // appended piece by piece: GCC 12 misreports "x" + std::string (-Wrestrict)
