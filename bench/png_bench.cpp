@@ -90,6 +90,25 @@ void EncodeMatrix(benchmark::internal::Benchmark* b) {
 }
 BENCHMARK(BM_Encode)->Apply(EncodeMatrix)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// The defaults by chunk size (KiB of filtered rows deflated on their own, each primed with the
+// 32 KiB before it), 2 threads: smaller chunks balance the threads, larger ones hash less of a
+// dictionary.
+void BM_EncodeChunk(benchmark::State& state) {
+  const int channels = int(state.range(0));
+  io::PngEncodeOptions o;
+  o.chunkBytes = size_t(state.range(1)) << 10;
+  tbb::global_control threads(tbb::global_control::max_allowed_parallelism, 2);
+  const std::vector<uint8_t>& px = Frame(channels);
+  size_t bytes = 0;
+  for (auto _ : state) bytes = io::EncodePng(1920, 1080, channels, px.data(), o).size();
+  Report(state, bytes, channels);
+}
+BENCHMARK(BM_EncodeChunk)
+    ->ArgNames({"ch", "chunk_KiB"})
+    ->ArgsProduct({{3, 4}, {128, 256, 512, 1024, 2048}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
 // The whole io::WritePng: temporary, encode, write, rename (to /tmp).
 void BM_WritePng(benchmark::State& state) {
   const int channels = int(state.range(0));
