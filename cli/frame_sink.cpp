@@ -177,7 +177,7 @@ void FrameSink::Write(const std::string& path, OutputKind kind, const effects::R
   std::function<void()> write;
   if (kind == OutputKind::kPng) {
     const int channels = options.transparent ? 4 : 3;
-    std::vector<uint8_t> pixels = effects::EncodeSrgb8(frame_, options.transparent);
+    Plane<uint8_t> pixels = effects::TakeSrgb8(frame_, options.transparent);  // the next Render makes its own
     io::ImageFile aovs;
     if (options.aovs != 0) aovs = ToExr(frame_, /*withColor=*/false);
     write = [path, w = frame_.width, h = frame_.height, channels, pixels = std::move(pixels), aovs = std::move(aovs)] {

@@ -1,6 +1,7 @@
 #include "effects/frame_renderer.h"
 
 #include <algorithm>
+#include <utility>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -119,18 +120,40 @@ void RenderFrame(const raster::PrimitiveScene& scene, const raster::Camera& came
   f.totalMs = MsBetween(t0, passStart);
 }
 
-std::vector<uint8_t> EncodeSrgb8(const RenderedFrame& f, bool withAlpha) {
+namespace {
+
+// The frame's rgba encoded into `px` (n·nc bytes). Each pixel on its own, so pixels in parallel
+// give the same bytes for any thread count.
+void EncodeRgba(const RenderedFrame& f, bool withAlpha, uint8_t* px) {
   const size_t n = size_t(f.width) * size_t(f.height);
-  const int nc = withAlpha ? 4 : 3;
-  if (!f.srgb8.empty()) {
-    SOFTMOL_CHECK(f.srgb8.size() == n * size_t(nc) && f.rgba.empty());
-    return std::vector<uint8_t>(f.srgb8.begin(), f.srgb8.end());
-  }
-  std::vector<uint8_t> px(n * size_t(nc));
-  // Each pixel on its own, so pixels in parallel give the same bytes for any thread count.
+  const size_t nc = withAlpha ? 4 : 3;
   tbb::parallel_for(tbb::blocked_range<size_t>(0, n, kEncodeGrain), [&](const tbb::blocked_range<size_t>& r) {
-    EncodeSrgb8Pixels(f.rgba.data() + 4 * r.begin(), r.size(), withAlpha, px.data() + size_t(nc) * r.begin());
+    EncodeSrgb8Pixels(f.rgba.data() + 4 * r.begin(), r.size(), withAlpha, px + nc * r.begin());
   });
+}
+
+size_t Srgb8Bytes(const RenderedFrame& f, bool withAlpha) {
+  const size_t bytes = size_t(f.width) * size_t(f.height) * (withAlpha ? 4 : 3);
+  SOFTMOL_CHECK(f.srgb8.empty() || (f.srgb8.size() == bytes && f.rgba.empty()));
+  return bytes;
+}
+
+}  // namespace
+
+std::vector<uint8_t> EncodeSrgb8(const RenderedFrame& f, bool withAlpha) {
+  const size_t bytes = Srgb8Bytes(f, withAlpha);
+  if (!f.srgb8.empty()) return std::vector<uint8_t>(f.srgb8.begin(), f.srgb8.end());
+  std::vector<uint8_t> px(bytes);
+  EncodeRgba(f, withAlpha, px.data());
+  return px;
+}
+
+Plane<uint8_t> TakeSrgb8(RenderedFrame& f, bool withAlpha) {
+  const size_t bytes = Srgb8Bytes(f, withAlpha);
+  if (!f.srgb8.empty()) return std::exchange(f.srgb8, {});
+  Plane<uint8_t> px;
+  px.resize(bytes);  // uninitialised: the encode writes every byte, in parallel
+  EncodeRgba(f, withAlpha, px.data());
   return px;
 }
 

@@ -178,5 +178,8 @@ RenderedFrame RenderFrame(const raster::PrimitiveScene& scene, const raster::Cam
 // the frame's own srgb8 when its tiles made them (it must then have been rendered with
 // transparent == withAlpha), else encoded from rgba.
 std::vector<uint8_t> EncodeSrgb8(const RenderedFrame& frame, bool withAlpha);
+// The same pixels, taking the tiles' bytes out of `frame` where it has them (no copy: a 1080p
+// frame's 6 MB; frame.srgb8 is left empty), else encoded into a new plane.
+Plane<uint8_t> TakeSrgb8(RenderedFrame& frame, bool withAlpha);
 
 }  // namespace softmol::effects

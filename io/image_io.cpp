@@ -109,7 +109,7 @@ void ReadChannels(const ModuleImage& m, const std::string& path, int begin, int 
 }  // namespace
 
 void WritePng(const std::string& path, int width, int height, int channels,
-              const std::vector<uint8_t>& pixels) {
+              std::span<const uint8_t> pixels) {
   if (width <= 0 || height <= 0 || (channels != 3 && channels != 4) ||
       pixels.size() != size_t(width) * size_t(height) * size_t(channels))
     throw InputError({path}, "internal error: inconsistent PNG image size");

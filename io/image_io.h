@@ -14,6 +14,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -33,7 +34,7 @@ struct ImageFile {
 
 // PNG: 8-bit, `channels` is 3 (RGB) or 4 (RGBA), pixels interleaved, top row first.
 void WritePng(const std::string& path, int width, int height, int channels,
-              const std::vector<uint8_t>& pixels);
+              std::span<const uint8_t> pixels);
 
 // OpenEXR with every channel of `image` (mixed float32 / uint32), zip-compressed.
 void WriteExr(const std::string& path, const ImageFile& image);
