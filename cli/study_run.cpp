@@ -344,9 +344,10 @@ constexpr double kSetupOffsets[] = {0.0, 1e4, 1e5};
 // The study's scene and views moved by `offset`, or (offset 0) the study's own.
 struct SetupCase {
   double offset = 0;
-  raster::PrimitiveScene moved;
-  const raster::PrimitiveScene* scene = nullptr;
+  const raster::PrimitiveScene* given = nullptr;
+  raster::PrimitiveScene moved;  // offset != 0
   std::vector<raster::Camera> views;
+  const raster::PrimitiveScene& Scene() const { return offset == 0.0 ? *given : moved; }
 };
 
 void Translate(std::vector<double>& x, std::vector<double>& y, std::vector<double>& z, const glm::dvec3& d) {
@@ -359,7 +360,7 @@ std::vector<SetupCase> SetupCases(const StudyInput& in) {
     SetupCase& k = cases[c];
     k.offset = kSetupOffsets[c];
     k.views = in.views;
-    k.scene = in.scene;
+    k.given = in.scene;
     if (k.offset == 0.0) continue;
     const glm::dvec3 d = k.offset * glm::dvec3(1.0, -1.0, 1.0);
     k.moved = *in.scene;
@@ -367,7 +368,6 @@ std::vector<SetupCase> SetupCases(const StudyInput& in) {
     Translate(k.moved.cylinders.x0, k.moved.cylinders.y0, k.moved.cylinders.z0, d);
     Translate(k.moved.cylinders.x1, k.moved.cylinders.y1, k.moved.cylinders.z1, d);
     Translate(k.moved.ellipsoids.x, k.moved.ellipsoids.y, k.moved.ellipsoids.z, d);
-    k.scene = &k.moved;
     for (raster::Camera& cam : k.views) cam.eye += d, cam.target += d;
   }
   return cases;
@@ -377,7 +377,7 @@ std::vector<SetupCase> SetupCases(const StudyInput& in) {
 Measured MeasureSetupPoint(const std::vector<SetupCase>& cases, const effects::RenderOptions& o, int repeats) {
   Measured out;
   for (size_t c = 0; c < cases.size(); ++c) {
-    Measured m = MeasurePoint(Method::kSetupPrecision, {cases[c].scene, cases[c].views}, o, c == 0 ? repeats : 1);
+    Measured m = MeasurePoint(Method::kSetupPrecision, {&cases[c].Scene(), cases[c].views}, o, c == 0 ? repeats : 1);
     if (c == 0) out.row = std::move(m.row);
     for (Output& v : m.views) out.views.push_back(std::move(v));
   }
@@ -412,7 +412,7 @@ void ScoreSetup(MethodResult& result, const std::vector<std::vector<Output>>& ou
                 const std::vector<SetupCase>& cases) {
   std::vector<raster::ReferenceImage> refs;  // case-major, as MeasureSetupPoint keeps the views
   for (const SetupCase& c : cases)
-    for (const raster::Camera& cam : c.views) refs.push_back(raster::RayCastReference(*c.scene, cam));
+    for (const raster::Camera& cam : c.views) refs.push_back(raster::RayCastReference(c.Scene(), cam));
   std::string table = "Per case (the molecule and camera moved along (1, -1, 1) by the offset):\n\n"
                       "| point | offset Å | coverage error | mean depth error Å | p95 depth error Å |\n"
                       "|---|---:|---:|---:|---:|\n";
@@ -436,9 +436,9 @@ void ScoreSetup(MethodResult& result, const std::vector<std::vector<Output>>& ou
   result.detail = table;
   result.errorName = "fraction of covered pixels whose visible primitive differs from the reference";
   result.p95Name = "p95 |depth - reference| (Å) where both see the same primitive";
-  result.reference = "the double-precision reference ray caster (every pixel's ray against every primitive, no "
-                     "boxes), on the views as given and with the molecule and camera moved 1e4 and 1e5 Å from the "
-                     "origin; the cost is the G-buffer's setup stage";
+  result.reference = "the double-precision reference ray caster (each pixel's ray against the primitives in "
+                     "double, no setup and no kernels), on the views as given and with the molecule and camera "
+                     "moved 1e4 and 1e5 Å from the origin; the cost is the G-buffer's setup stage";
 }
 
 // Every method's errors against its ground truth; the AO methods share one reference.

@@ -1,5 +1,6 @@
-// raster/setup.cpp — per-frame primitive setup in double precision (float only to price it): camera-relative eye-space
-// constants for the fragment kernels and tight screen boxes (Sigg et al. 2006, §3.2).
+// raster/setup.cpp — per-frame primitive setup in double precision (float only to price it,
+// FrameOptions::setupPrecision): camera-relative eye-space constants for the fragment kernels and
+// tight screen boxes (Sigg et al. 2006, §3.2).
 #include "raster/detail/setup.h"
 
 #include <tbb/blocked_range.h>
