@@ -13,7 +13,7 @@
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 #include <limits>
-#include <type_traits>
+#include <vector>
 
 #include "raster/detail/setup_kernel.h"
 
@@ -378,17 +378,20 @@ void ForEachBatch(size_t count, Batch&& batch) {
   });
 }
 
-// A batch of a scene's double array as the setup's type: the positions themselves (double), or
-// rounded to float as a float vertex buffer holds them.
-template <class T, class Source>
-const T* BatchOf(const Source& v, size_t first, size_t n, T* scratch) {
-  if constexpr (std::is_same_v<T, typename Source::value_type>) {
-    return v.data() + first;
-  } else {
-    for (size_t j = 0; j < n; ++j) scratch[j] = T(v[first + j]);
-    return scratch;
+// A batch of the scene's position arrays as the setup's type: rounded to float into kArrays
+// copies, as a float vertex buffer holds them; the double setup reads the scene's own arrays.
+template <class T, int kArrays>
+struct BatchPositions {
+  T copies[kArrays][kSetupBatch];
+  const T* Of(const std::vector<double>& v, size_t first, size_t n, int k) {
+    for (size_t j = 0; j < n; ++j) copies[k][j] = T(v[first + j]);
+    return copies[k];
   }
-}
+};
+template <int kArrays>
+struct BatchPositions<double, kArrays> {
+  const double* Of(const std::vector<double>& v, size_t first, size_t, int) { return v.data() + first; }
+};
 
 // Spheres: vectorised batches (raster/setup_kernel.cpp), packed here.
 template <class T>
@@ -396,10 +399,11 @@ void SetupSpheres(const PrimitiveScene& scene, const SetupConstants& k, SetupOut
   const SphereSet& in = scene.spheres;
   ForEachBatch(in.size(), [&](size_t first, size_t n) {
     SphereSetupLanes<T> lanes;
-    T radius[kSetupBatch], px[kSetupBatch], py[kSetupBatch], pz[kSetupBatch];
+    BatchPositions<T, 3> at;
+    T radius[kSetupBatch];
     for (size_t j = 0; j < n; ++j) radius[j] = T(in.radius[first + j]);
-    SetupSpheresBatch(k, BatchOf(in.x, first, n, px), BatchOf(in.y, first, n, py), BatchOf(in.z, first, n, pz),
-                      radius, n, lanes);
+    SetupSpheresBatch(k, at.Of(in.x, first, n, 0), at.Of(in.y, first, n, 1), at.Of(in.z, first, n, 2), radius, n,
+                      lanes);
     for (size_t j = 0; j < n; ++j) {
       const size_t i = first + j;
       SpherePrim& p = out.spheres[i];
@@ -431,11 +435,11 @@ void SetupCylinders(const PrimitiveScene& scene, const ViewSetup& v, const Setup
   const CylinderSet& cyl = scene.cylinders;
   ForEachBatch(cyl.size(), [&](size_t first, size_t n) {
     CylinderSetupLanes<T> lanes;
-    T radius[kSetupBatch], scratch[6][kSetupBatch];
+    BatchPositions<T, 6> at;
+    T radius[kSetupBatch];
     for (size_t j = 0; j < n; ++j) radius[j] = T(cyl.radius[first + j]);
-    const CylinderEnds<T> ends{BatchOf(cyl.x0, first, n, scratch[0]), BatchOf(cyl.y0, first, n, scratch[1]),
-                               BatchOf(cyl.z0, first, n, scratch[2]), BatchOf(cyl.x1, first, n, scratch[3]),
-                               BatchOf(cyl.y1, first, n, scratch[4]), BatchOf(cyl.z1, first, n, scratch[5])};
+    const CylinderEnds<T> ends{at.Of(cyl.x0, first, n, 0), at.Of(cyl.y0, first, n, 1), at.Of(cyl.z0, first, n, 2),
+                               at.Of(cyl.x1, first, n, 3), at.Of(cyl.y1, first, n, 4), at.Of(cyl.z1, first, n, 5)};
     SetupCylindersBatch(k, ends, radius, n, lanes);
     for (size_t j = 0; j < n; ++j) {
       const size_t i = first + j;
