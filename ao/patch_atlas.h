@@ -59,7 +59,7 @@ int AtlasSideForPatch(size_t spheres, size_t cylinders, const AtlasOptions& opti
 
 // When neither the texture side nor the patch size is given. What `softmol study` measured
 // (docs/study, docs/PERFORMANCE.md): the error stops falling above ~32 texels a patch while the
-// bake's texel pass keeps growing (pept: 32 texels give the error of 99 in a quarter of the
+// bake's texel pass keeps growing (pept: 32 texels give the error of 93 in a sixth of the
 // time), and below ~16 it rises (1tii: 16 texels beat 13 at the same cost). So:
 //   - patches of the 1024² atlas (options.textureSide) in [kAutoPatchFloor, kAutoPatchCap]: it;
 //   - larger: kAutoPatchCap-texel patches in the atlas just big enough for them;

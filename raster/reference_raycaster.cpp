@@ -41,6 +41,13 @@ void Roots(double a, double B, double C, double disc, double& t0, double& t1) {
   t1 = std::max(r0, r1);
 }
 
+// Allowed |float − double| of a root t = (B ± root)/a: the relative tolerance, the root's
+// sensitivity to a discriminant error of `bound`, and the float rounding of the quotient.
+double DepthTolerance(double a, double B, double root, double bound) {
+  return kDepthRelTol * std::abs(B / a) + bound / (2.0 * a * std::max(root, std::sqrt(bound))) +
+         16.0 * kEpsF * (std::abs(B) + root) / a;
+}
+
 struct Ray {
   dvec3 o, d;
 };
@@ -59,9 +66,7 @@ Hit SphereHit(const Ray& ray, const dvec3& c, double r, double nearP, double far
   double t0, t1;
   Roots(a, B, C, disc, t0, t1);
   const double root = std::sqrt(std::max(disc, 0.0));
-  const double tolT = kDepthRelTol * std::abs(B / a) +
-                      bound / (2.0 * a * std::max(root, std::sqrt(bound))) +
-                      16.0 * kEpsF * (std::abs(B) + root) / a;
+  const double tolT = DepthTolerance(a, B, root, bound);
   auto nearBoundary = [&](double t) {
     return std::abs(t - nearP) <= tolT || std::abs(t - farP) <= tolT;
   };
@@ -107,9 +112,7 @@ Hit CylinderHit(const Ray& ray, const dvec3& e0, const dvec3& e1, double r, doub
   double t0, t1;
   Roots(a, B, C, disc, t0, t1);
   const double root = std::sqrt(std::max(disc, 0.0));
-  const double tolT = kDepthRelTol * std::abs(B / a) +
-                      bound / (2.0 * a * std::max(root, std::sqrt(bound))) +
-                      16.0 * kEpsF * (std::abs(B) + root) / a;
+  const double tolT = DepthTolerance(a, B, root, bound);
   auto axial = [&](double t) { return t * F - pw; };
   const double sTol =
       64.0 * kEpsF * (dl * (std::abs(t0) + std::abs(t1)) + pl + L) + std::abs(F) * tolT;
@@ -163,9 +166,7 @@ Hit EllipsoidHit(const Ray& ray, const dvec3& c, const glm::dmat3& A, double nea
   double t0, t1;
   Roots(a, B, C, disc, t0, t1);
   const double root = std::sqrt(std::max(disc, 0.0));
-  const double tolT = kDepthRelTol * std::abs(B / a) +
-                      bound / (2.0 * a * std::max(root, std::sqrt(bound))) +
-                      16.0 * kEpsF * (std::abs(B) + root) / a;
+  const double tolT = DepthTolerance(a, B, root, bound);
   if (std::abs(disc) <= bound) {
     h.ambiguous = true;
     h.tCandidate = B / a;
