@@ -111,9 +111,10 @@ HWY_INLINE V SampleLevel(D d, const detail::ConeConstants& k, int level, V px, V
                    Fetch(d, data, res, ix, jy, jz), Fetch(d, data, res, jx, jy, jz), fx, fy, fz);
 }
 
-// Mirrors the pixel body of ConeTraceRowScalar for hn::Lanes(d) pixels starting at x.
+// Mirrors the pixel body of ConeTraceRowScalar for hn::Lanes(d) pixels starting at x of a run
+// whose first pixel is column x0.
 template <class D>
-HWY_INLINE void ConePixels(D d, const detail::ConeConstants& k, int x, int y, const float* depth,
+HWY_INLINE void ConePixels(D d, const detail::ConeConstants& k, int x0, int x, int y, const float* depth,
                            const float* nxRow, const float* nyRow, const float* nzRow, float* ao) {
   using V = hn::Vec<D>;
   const V zero = hn::Zero(d), one = hn::Set(d, 1.0f);
@@ -130,7 +131,7 @@ HWY_INLINE void ConePixels(D d, const detail::ConeConstants& k, int x, int y, co
   const V nz = hn::IfThenElse(visible, hn::LoadU(d, nzRow + x), zero);
 
   // The rasterizer's pixel rays (raster/pixel_ray-inl.h, raster/shared/quadratic.inc).
-  const V pixX = hn::ConvertTo(d, hn::Iota(hn::RebindToSigned<D>(), x));
+  const V pixX = hn::ConvertTo(d, hn::Iota(hn::RebindToSigned<D>(), x0 + x));
   V ex = raster::HWY_NAMESPACE::PixelToRay(d, pixX, k.halfWidth, k.pixelScale);
   V ey = hn::Set(d, raster::shared::PixelToRay(float(y), k.halfHeight, k.pixelScale));
   if (!k.ortho) {
@@ -192,14 +193,14 @@ HWY_INLINE void ConePixels(D d, const detail::ConeConstants& k, int x, int y, co
   hn::StoreU(hn::IfThenElse(visible, access, one), d, ao + x);
 }
 
-void ConeTraceRowImpl(const detail::ConeConstants& k, int y, const float* depth, const float* nx,
-                      const float* ny, const float* nz, float* ao) {
+void ConeTraceRowImpl(const detail::ConeConstants& k, int x0, int y, int count, const float* depth,
+                      const float* nx, const float* ny, const float* nz, float* ao) {
   const hn::ScalableTag<float> d;
   const int lanes = int(hn::Lanes(d));
   int x = 0;
-  for (; x + lanes <= k.width; x += lanes) ConePixels(d, k, x, y, depth, nx, ny, nz, ao);
+  for (; x + lanes <= count; x += lanes) ConePixels(d, k, x0, x, y, depth, nx, ny, nz, ao);
   const hn::CappedTag<float, 1> d1;
-  for (; x < k.width; ++x) ConePixels(d1, k, x, y, depth, nx, ny, nz, ao);
+  for (; x < count; ++x) ConePixels(d1, k, x0, x, y, depth, nx, ny, nz, ao);
 }
 
 }  // namespace softmol::ao::HWY_NAMESPACE

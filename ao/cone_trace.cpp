@@ -25,9 +25,9 @@ HWY_EXPORT(ConeTraceRowImpl);
 
 namespace detail {
 
-void ConeTraceRow(const ConeConstants& k, int y, const float* depth, const float* nx,
+void ConeTraceRow(const ConeConstants& k, int x0, int y, int count, const float* depth, const float* nx,
                   const float* ny, const float* nz, float* ao) noexcept {
-  HWY_DYNAMIC_DISPATCH(ConeTraceRowImpl)(k, y, depth, nx, ny, nz, ao);
+  HWY_DYNAMIC_DISPATCH(ConeTraceRowImpl)(k, x0, y, count, depth, nx, ny, nz, ao);
 }
 
 // The cone set, in the tangent frame (b1, b2, n). Each cone stands for an equal share of the
@@ -120,9 +120,9 @@ inline float SampleLevel(const ConeConstants& k, int level, float px, float py, 
 
 }  // namespace
 
-void ConeTraceRowScalar(const ConeConstants& k, int y, const float* depth, const float* nxRow,
-                        const float* nyRow, const float* nzRow, float* ao) noexcept {
-  for (int x = 0; x < k.width; ++x) {
+void ConeTraceRowScalar(const ConeConstants& k, int x0, int y, int count, const float* depth,
+                        const float* nxRow, const float* nyRow, const float* nzRow, float* ao) noexcept {
+  for (int x = 0; x < count; ++x) {
     const float rawDepth = depth[x];
     const bool visible = rawDepth < 3.0e38f && rawDepth > 0.0f;
     if (!visible) {  // the SIMD rows skip all-background vectors; their lanes also get 1
@@ -135,7 +135,7 @@ void ConeTraceRowScalar(const ConeConstants& k, int y, const float* depth, const
     const float nx = visible ? nxRow[x] : 0.0f;
     const float ny = visible ? nyRow[x] : 0.0f;
     const float nz = visible ? nzRow[x] : 0.0f;
-    float ex = PixelToRay(float(x), k.halfWidth, k.pixelScale);
+    float ex = PixelToRay(float(x0 + x), k.halfWidth, k.pixelScale);
     float ey = PixelToRay(float(y), k.halfHeight, k.pixelScale);
     if (!k.ortho) {
       ex = ex * dep;
@@ -183,7 +183,7 @@ void Run(const OccupancyPyramid& pyramid, const raster::Camera& camera,
   tbb::parallel_for(tbb::blocked_range<int>(0, g.height, 4), [&](const tbb::blocked_range<int>& r) {
     for (int y = r.begin(); y < r.end(); ++y) {
       const size_t o = g.Index(0, y);
-      row(k, y, g.depth.data() + o, g.normalX.data() + o, g.normalY.data() + o,
+      row(k, 0, y, g.width, g.depth.data() + o, g.normalX.data() + o, g.normalY.data() + o,
           g.normalZ.data() + o, ao.data() + o);
     }
   });
@@ -201,6 +201,18 @@ void ConeTraceAoScalar(const OccupancyPyramid& pyramid, const raster::Camera& ca
                        const raster::GBuffer& gbuffer, const ConeAoOptions& options,
                        std::span<float> ao) {
   Run(pyramid, camera, gbuffer, options, ao, detail::ConeTraceRowScalar);
+}
+
+ConeTileTracer::ConeTileTracer(const OccupancyPyramid& pyramid, const raster::Camera& camera,
+                               const ConeAoOptions& options)
+    : k_(detail::MakeConeConstants(pyramid, camera, options, camera.width)) {}
+
+void ConeTileTracer::operator()(const raster::TileSamples& t, float* ao) const {
+  SOFTMOL_CHECK(t.depth && t.normalX && t.normalY && t.normalZ);
+  for (int y = t.y0; y < t.y1; ++y) {
+    const size_t o = t.Index(t.x0, y);
+    detail::ConeTraceRow(k_, t.x0, y, t.x1 - t.x0, t.depth + o, t.normalX + o, t.normalY + o, t.normalZ + o, ao + o);
+  }
 }
 
 }  // namespace softmol::ao

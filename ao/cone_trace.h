@@ -12,6 +12,7 @@
 
 #include "ao/occupancy_pyramid.h"
 #include "raster/camera.h"
+#include "raster/frame.h"
 #include "raster/gbuffer.h"
 
 namespace softmol::ao {
@@ -59,11 +60,26 @@ struct ConeConstants {
 ConeConstants MakeConeConstants(const OccupancyPyramid& pyramid, const raster::Camera& camera,
                                 const ConeAoOptions& options, int width);
 
-// One row of pixels; `ao` points at the row. Thread-safe for distinct rows.
-void ConeTraceRow(const ConeConstants& k, int y, const float* depth, const float* nx,
+// `count` pixels of row y from column x0 (a whole row, or a tile's part of it); the pointers
+// point at column x0. Thread-safe for distinct pixels.
+void ConeTraceRow(const ConeConstants& k, int x0, int y, int count, const float* depth, const float* nx,
                   const float* ny, const float* nz, float* ao) noexcept;
-void ConeTraceRowScalar(const ConeConstants& k, int y, const float* depth, const float* nx,
+void ConeTraceRowScalar(const ConeConstants& k, int x0, int y, int count, const float* depth, const float* nx,
                         const float* ny, const float* nz, float* ao) noexcept;
 
 }  // namespace detail
+
+// The tile form, for the fused tile pipeline (effects/frame_renderer.cpp): ConeTraceAo's values
+// for the samples of one tile of a G-buffer rendered with `camera`, each tile row one
+// ConeTraceRow. Safe to call on disjoint tiles in parallel.
+class ConeTileTracer {
+ public:
+  ConeTileTracer(const OccupancyPyramid& pyramid, const raster::Camera& camera, const ConeAoOptions& options);
+  // `ao` holds the tile's samples at tile.Index(x, y); the tile needs depth and normal.
+  void operator()(const raster::TileSamples& tile, float* ao) const;
+
+ private:
+  detail::ConeConstants k_;
+};
+
 }  // namespace softmol::ao

@@ -630,53 +630,63 @@ uint64_t BakeInputHash(const raster::PrimitiveScene& scene, const BakeOptions& b
   return h;
 }
 
+void LookupBakedAoSamples(const AoAtlas& atlas, const uint32_t* primitiveId, const float* surfaceU,
+                          const float* surfaceV, const float* surfaceW, size_t count, float* ao) {
+  const AtlasLayout& l = atlas.layout;
+  const size_t nS = l.sphereCount, nC = l.cylinderCount;
+  // The sphere samples and the bond samples, each encoded and fetched as one batch, in
+  // per-thread scratch (the tile form runs once a tile, so it must not allocate).
+  thread_local std::vector<float> nx, ny, nz, u, v, out;
+  thread_local std::vector<int32_t> x0, y0;
+  thread_local std::vector<uint32_t> at;
+  if (nx.size() < count) {
+    for (std::vector<float>* p : {&nx, &ny, &nz, &u, &v, &out}) p->resize(count);
+    x0.resize(count), y0.resize(count), at.resize(count);
+  }
+  for (size_t i = 0; i < count; ++i) ao[i] = 1.0f;  // background, ellipsoids: open
+  size_t n = 0;
+  for (size_t i = 0; i < count; ++i) {
+    const uint32_t id = primitiveId[i];
+    if (id >= nS) continue;
+    const PatchRect r = SpherePatch(l, id);
+    nx[n] = surfaceU[i], ny[n] = surfaceV[i], nz[n] = surfaceW[i];
+    x0[n] = r.x0, y0[n] = r.y0, at[n] = uint32_t(i), ++n;
+  }
+  if (n > 0) {
+    if (l.sphereMap == PatchKind::kCube)
+      CubeEncode(nx.data(), ny.data(), nz.data(), u.data(), v.data(), n);
+    else
+      OctahedralEncode(nx.data(), ny.data(), nz.data(), u.data(), v.data(), n);
+    LookupPatches(atlas, l.sphereMap, l.cellWidth, l.cellHeight, x0.data(), y0.data(), u.data(), v.data(),
+                  out.data(), n);
+    for (size_t k = 0; k < n; ++k) ao[at[k]] = out[k];
+  }
+  n = 0;
+  for (size_t i = 0; i < count; ++i) {
+    const uint32_t id = primitiveId[i];
+    if (id < nS || id - nS >= nC || id == raster::kNoPrimitive) continue;
+    const PatchRect r = CylinderPatch(l, id - nS);
+    // kSurfaceCoord for a cylinder: u = axial, (v, w) = (cos, sin).
+    nx[n] = surfaceV[i], ny[n] = surfaceW[i], nz[n] = surfaceU[i];
+    x0[n] = r.x0, y0[n] = r.y0, at[n] = uint32_t(i), ++n;
+  }
+  if (n > 0) {
+    PrismEncode(nx.data(), ny.data(), nz.data(), u.data(), v.data(), n);
+    LookupPatches(atlas, PatchKind::kPrism, l.cellWidth, l.cylinderHeight, x0.data(), y0.data(), u.data(),
+                  v.data(), out.data(), n);
+    for (size_t k = 0; k < n; ++k) ao[at[k]] = out[k];
+  }
+}
+
 void LookupBakedAo(const AoAtlas& atlas, const raster::GBuffer& g, std::span<float> ao) {
   SOFTMOL_CHECK(ao.size() == size_t(g.width) * size_t(g.height));
   SOFTMOL_CHECK((g.channels & raster::kPrimitiveId) && (g.channels & raster::kSurfaceCoord));
-  const AtlasLayout& l = atlas.layout;
-  const size_t nS = l.sphereCount, nC = l.cylinderCount;
   const size_t w = size_t(g.width);
   tbb::parallel_for(tbb::blocked_range<int>(0, g.height, 4), [&](const tbb::blocked_range<int>& rows) {
-    // Per row: the sphere lanes and the bond lanes, each encoded and fetched as one batch.
-    std::vector<float> nx(w), ny(w), nz(w), u(w), v(w), out(w);
-    std::vector<int32_t> x0(w), y0(w);
-    std::vector<uint32_t> at(w);
     for (int y = rows.begin(); y < rows.end(); ++y) {
       const size_t row = size_t(y) * w;
-      float* dst = ao.data() + row;
-      for (size_t x = 0; x < w; ++x) dst[x] = 1.0f;  // background, ellipsoids: open
-      size_t n = 0;
-      for (size_t x = 0; x < w; ++x) {
-        const uint32_t id = g.primitiveId[row + x];
-        if (id >= nS) continue;
-        const PatchRect r = SpherePatch(l, id);
-        nx[n] = g.surfaceU[row + x], ny[n] = g.surfaceV[row + x], nz[n] = g.surfaceW[row + x];
-        x0[n] = r.x0, y0[n] = r.y0, at[n] = uint32_t(x), ++n;
-      }
-      if (n > 0) {
-        if (l.sphereMap == PatchKind::kCube)
-          CubeEncode(nx.data(), ny.data(), nz.data(), u.data(), v.data(), n);
-        else
-          OctahedralEncode(nx.data(), ny.data(), nz.data(), u.data(), v.data(), n);
-        LookupPatches(atlas, l.sphereMap, l.cellWidth, l.cellHeight, x0.data(), y0.data(), u.data(),
-                      v.data(), out.data(), n);
-        for (size_t k = 0; k < n; ++k) dst[at[k]] = out[k];
-      }
-      n = 0;
-      for (size_t x = 0; x < w; ++x) {
-        const uint32_t id = g.primitiveId[row + x];
-        if (id < nS || id - nS >= nC || id == raster::kNoPrimitive) continue;
-        const PatchRect r = CylinderPatch(l, id - nS);
-        // kSurfaceCoord for a cylinder: u = axial, (v, w) = (cos, sin).
-        nx[n] = g.surfaceV[row + x], ny[n] = g.surfaceW[row + x], nz[n] = g.surfaceU[row + x];
-        x0[n] = r.x0, y0[n] = r.y0, at[n] = uint32_t(x), ++n;
-      }
-      if (n > 0) {
-        PrismEncode(nx.data(), ny.data(), nz.data(), u.data(), v.data(), n);
-        LookupPatches(atlas, PatchKind::kPrism, l.cellWidth, l.cylinderHeight, x0.data(), y0.data(),
-                      u.data(), v.data(), out.data(), n);
-        for (size_t k = 0; k < n; ++k) dst[at[k]] = out[k];
-      }
+      LookupBakedAoSamples(atlas, &g.primitiveId[row], &g.surfaceU[row], &g.surfaceV[row], &g.surfaceW[row], w,
+                           ao.data() + row);
     }
   });
 }

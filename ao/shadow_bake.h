@@ -71,6 +71,10 @@ AoAtlas BakeAo(const raster::PrimitiveScene& scene, const BakeOptions& options,
 // cylinder ids [nS, nS + nC) the bond strip with (cos, sin, axial); ellipsoids, background and
 // ids beyond the atlas get 1. `ao` has width·height entries. Parallel over rows (TBB).
 void LookupBakedAo(const AoAtlas& atlas, const raster::GBuffer& g, std::span<float> ao);
+// The same for `count` samples given by their channels (a row, or a whole tile of the fused
+// tile pipeline): the same value for a sample however the samples are grouped. Thread-safe.
+void LookupBakedAoSamples(const AoAtlas& atlas, const uint32_t* primitiveId, const float* surfaceU,
+                          const float* surfaceV, const float* surfaceW, size_t count, float* ao);
 
 // ---- The shadow maps alone, for tests --------------------------------------------------------
 

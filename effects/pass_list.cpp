@@ -28,7 +28,8 @@ std::vector<PlannedPass> PlanPasses(const RenderOptions& o) {
   // The G-buffer writes only what the kept passes read (and depth).
   uint64_t gbufferReads = kBufDepth;
   for (const PlannedPass& p : plan) gbufferReads |= p.reads & kBufGBuffer;
-  plan.front().writes = gbufferReads;
+  for (PlannedPass& p : plan)
+    if (p.id == PassId::kGBuffer) p.writes = gbufferReads;
   return plan;
 }
 

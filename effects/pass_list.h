@@ -19,6 +19,7 @@ namespace softmol::effects {
 
 struct RenderOptions;
 struct FrameContext;
+struct TileStage;
 
 // Everything a pass can read or write, one bit each, with the name the profile shows.
 #define SOFTMOL_FRAME_BUFFERS(X)                                                           \
@@ -61,14 +62,16 @@ inline constexpr uint64_t kBufGBuffer = kBufDepth | kBufNormal | kBufBaseColor |
                                         kBufSurfaceCoord | kBufLine | kBufCapped;
 
 // The passes a frame can run, in the order they run (the registry lists them in this order).
+// The scene-wide maps come first (they read only the primitives): then the per-sample passes
+// after the G-buffer find them built, also where they run inside its tiles.
 enum class PassId : uint8_t {
-  kGBuffer,
   kAoBake,
-  kBakedAoLookup,
   kOccupancyPyramid,
+  kShadowMap,
+  kGBuffer,
+  kBakedAoLookup,
   kConeAo,
   kReferenceAo,
-  kShadowMap,
   kShadows,
   kOutlines,
   kDepthHalos,
@@ -97,10 +100,10 @@ struct PassUnit {
   uint64_t writes;                            // FrameBuffer bits (the G-buffer's are pruned)
   void (*run)(FrameContext&);                 // the CPU body
   io::ParamTable<RenderOptions> (*params)();  // the options it reads (may be empty)
-  // The fused form of a per-sample pass that reads only G-buffer channels: readies the pass to
-  // run on each tile inside the G-buffer pass (sets FrameContext::tileHook's consumer) instead
-  // of running `run` after it. Null when the pass has no such form.
-  void (*prepareTiles)(FrameContext&) = nullptr;
+  // The fused form of a per-sample pass: readies the pass to run on each tile inside the
+  // G-buffer pass (effects/frame_renderer.cpp), after the scene-wide passes it reads (maps,
+  // pyramids) have run, instead of running `run` after it. Null when the pass has no such form.
+  TileStage (*prepareTiles)(FrameContext&) = nullptr;
 };
 
 // Every unit, in run order (PassRegistry()[i].id == PassId(i)).

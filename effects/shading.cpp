@@ -227,7 +227,8 @@ TileShader::TileShader(const ShadingOptions& options, const Backdrop& backdrop, 
   constants_ = FrameShadeConstants(options, backdrop, inputs);
 }
 
-void TileShader::operator()(const raster::TileSamples& t) const {
+void TileShader::operator()(const raster::TileSamples& t, const float* ambientOcclusion,
+                            const float* shadow) const {
   const int ssaa = ssaa_;
   SOFTMOL_CHECK(t.x0 % ssaa == 0 && t.y0 % ssaa == 0 && t.x1 % ssaa == 0 && t.y1 % ssaa == 0);
   SOFTMOL_CHECK(t.x0 >= 0 && t.y0 >= 0 && t.x1 <= width_ * ssaa && t.y1 <= height_ * ssaa);
@@ -238,7 +239,7 @@ void TileShader::operator()(const raster::TileSamples& t) const {
   const size_t n = size_t(t.stride) * size_t(t.y1 - t.y0);
   thread_local std::vector<float> shaded;
   shaded.resize(4 * n);
-  const SampleRow in{t.normalX, t.normalY, t.normalZ, t.baseColor, t.primitiveId, nullptr, nullptr, t.line,
+  const SampleRow in{t.normalX, t.normalY, t.normalZ, t.baseColor, t.primitiveId, ambientOcclusion, shadow, t.line,
                      t.capped, nullptr, nullptr, readsDepth_ ? t.depth : nullptr};
   ShadeSampleRow(constants_, in, n, Planes(shaded.data(), n));
   // Each pixel row is resolved (and encoded) in cache, then copied out; the float image is far

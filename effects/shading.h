@@ -100,7 +100,8 @@ void ShadeAndResolve(const raster::GBuffer& g, int ssaa, const ShadingOptions& o
 // TileShadable. Safe to call on disjoint tiles in parallel.
 inline constexpr int kMaxTileSsaa = 4;
 inline constexpr size_t kMaxTileSide = 128;
-// True when the inputs need no other pass's full-frame buffer (no AO, shadow, outline or halo).
+// True when the inputs need no other pass's full-frame buffer (no AO, shadow, outline or halo
+// spans: the tile form takes AO and shadow as the tile's own planes, from passes fused before it).
 bool TileShadable(const ShadeInputs& inputs);
 // Where the tiles' pixels go (either or both): linear premultiplied RGBA floats, 4 a pixel, and
 // 8-bit sRGB, 3 bytes a pixel or 4 with alpha (EncodeSrgb8Pixels' bytes).
@@ -113,7 +114,10 @@ class TileShader {
  public:
   TileShader(const ShadingOptions& options, const Backdrop& backdrop, const ShadeInputs& inputs, int ssaa,
              int width, int height, const TileColorOutput& out);
-  void operator()(const raster::TileSamples& tile) const;
+  // `ambientOcclusion` and `shadow` (optional, null: none) hold the tile's samples at
+  // tile.Index(x, y), as ShadeInputs' spans hold the frame's.
+  void operator()(const raster::TileSamples& tile, const float* ambientOcclusion = nullptr,
+                  const float* shadow = nullptr) const;
 
  private:
   ShadeConstants constants_;

@@ -77,7 +77,7 @@ struct Undecided {
 // the final visibility of background, back-facing and decided samples; appends the others to
 // `u`. Returns how many the pre-test decided.
 template <class D>
-HWY_INLINE size_t PretestSamples(D d, const detail::ShadowConstants& k, int y, size_t x,
+HWY_INLINE size_t PretestSamples(D d, const detail::ShadowConstants& k, int x0, int y, size_t x,
                                  const float* depth, const float* nxRow, const float* nyRow,
                                  const float* nzRow, float* visibility, Undecided& u,
                                  uint64_t& taps) {
@@ -104,8 +104,9 @@ HWY_INLINE size_t PretestSamples(D d, const detail::ShadowConstants& k, int y, s
   }
 
   // Eye-space position from depth (as ao/cone_trace), pushed along the normal.
-  const auto columns = hn::Add(hn::Iota(di, 0), hn::Set(di, int32_t(x)));
-  V ex = raster::HWY_NAMESPACE::PixelToRay(d, hn::ConvertTo(d, columns), k.halfWidth, k.pixelScale);
+  const auto columns = hn::Add(hn::Iota(di, 0), hn::Set(di, int32_t(x)));  // in the run
+  const V pixX = hn::ConvertTo(d, hn::Add(columns, hn::Set(di, x0)));
+  V ex = raster::HWY_NAMESPACE::PixelToRay(d, pixX, k.halfWidth, k.pixelScale);
   V ey = hn::Set(d, raster::shared::PixelToRay(float(y), k.halfHeight, k.pixelScale));
   if (!k.ortho) {
     ex = hn::Mul(ex, dep);
@@ -156,12 +157,12 @@ HWY_INLINE void FinishSamples(D d, const detail::ShadowConstants& k, const Undec
   hn::StoreU(hn::Mul(lit, hn::Set(d, k.invTaps)), d, result + j);
 }
 
-inline uint32_t ShadowRowImpl(const detail::ShadowConstants& k, int y, const float* depth,
-                              const float* nx, const float* ny, const float* nz,
+inline uint32_t ShadowRowImpl(const detail::ShadowConstants& k, int x0, int y, int samples,
+                              const float* depth, const float* nx, const float* ny, const float* nz,
                               float* visibility, uint64_t& taps) {
   const hn::ScalableTag<float> d;
   const hn::CappedTag<float, 1> d1;
-  const size_t lanes = hn::Lanes(d), count = size_t(k.width);
+  const size_t lanes = hn::Lanes(d), count = size_t(samples);
   // Per-thread scratch for one row's packed samples (CompressStore may write a whole vector
   // past the packed ones, hence the extra lanes).
   thread_local std::vector<float> scratch;
@@ -174,8 +175,8 @@ inline uint32_t ShadowRowImpl(const detail::ShadowConstants& k, int y, const flo
 
   size_t decided = 0, x = 0;
   for (; x + lanes <= count; x += lanes)
-    decided += PretestSamples(d, k, y, x, depth, nx, ny, nz, visibility, u, taps);
-  for (; x < count; ++x) decided += PretestSamples(d1, k, y, x, depth, nx, ny, nz, visibility, u, taps);
+    decided += PretestSamples(d, k, x0, y, x, depth, nx, ny, nz, visibility, u, taps);
+  for (; x < count; ++x) decided += PretestSamples(d1, k, x0, y, x, depth, nx, ny, nz, visibility, u, taps);
 
   size_t j = 0;
   for (; j + lanes <= u.count; j += lanes) FinishSamples(d, k, u, j, result);

@@ -94,9 +94,9 @@ void BuildShadowMap(const raster::PrimitiveScene& scene, const raster::Camera& e
 
 namespace detail {
 
-uint32_t ShadowRow(const ShadowConstants& k, int y, const float* depth, const float* nx,
+uint32_t ShadowRow(const ShadowConstants& k, int x0, int y, int count, const float* depth, const float* nx,
                    const float* ny, const float* nz, float* visibility, uint64_t& taps) noexcept {
-  return HWY_DYNAMIC_DISPATCH(ShadowRowImpl)(k, y, depth, nx, ny, nz, visibility, taps);
+  return HWY_DYNAMIC_DISPATCH(ShadowRowImpl)(k, x0, y, count, depth, nx, ny, nz, visibility, taps);
 }
 
 ShadowConstants MakeShadowConstants(const ShadowMap& map, const raster::Camera& eyeCamera,
@@ -159,11 +159,11 @@ inline float Tap(const ShadowConstants& k, float lx, float ly, float receiver, i
 
 }  // namespace
 
-uint32_t ShadowRowScalar(const ShadowConstants& k, int y, const float* depth, const float* nxRow,
-                         const float* nyRow, const float* nzRow, float* visibility,
+uint32_t ShadowRowScalar(const ShadowConstants& k, int x0, int y, int count, const float* depth,
+                         const float* nxRow, const float* nyRow, const float* nzRow, float* visibility,
                          uint64_t& taps) noexcept {
   uint32_t decided = 0;
-  for (int x = 0; x < k.width; ++x) {
+  for (int x = 0; x < count; ++x) {
     const float dep = depth[x];
     if (!(dep < 3.0e38f && dep > 0.0f)) {  // background: nothing to shadow
       visibility[x] = 1.0f;
@@ -179,7 +179,7 @@ uint32_t ShadowRowScalar(const ShadowConstants& k, int y, const float* depth, co
     }
     // Eye-space position from depth (as ao/cone_trace), pushed along the normal by
     // normalOffset so the lookup leaves the receiver's own texel.
-    float ex = PixelToRay(float(x), k.halfWidth, k.pixelScale);
+    float ex = PixelToRay(float(x0 + x), k.halfWidth, k.pixelScale);
     float ey = PixelToRay(float(y), k.halfHeight, k.pixelScale);
     if (!k.ortho) {
       ex = ex * dep;
@@ -215,6 +215,9 @@ uint32_t ShadowRowScalar(const ShadowConstants& k, int y, const float* depth, co
 
 namespace {
 
+// The sample shows a surface (the rows' own test, as their statistics count it).
+bool Covered(float depth) { return depth < 3.0e38f && depth > 0.0f; }
+
 template <class RowFn>
 ShadowStats Run(const ShadowMap& map, const raster::Camera& camera, const raster::GBuffer& g,
                 const ShadowOptions& options, std::span<float> visibility, RowFn row) {
@@ -234,7 +237,7 @@ ShadowStats Run(const ShadowMap& map, const raster::Camera& camera, const raster
   tbb::parallel_for(tbb::blocked_range<int>(0, g.height, 4), [&](const tbb::blocked_range<int>& r) {
     for (int y = r.begin(); y < r.end(); ++y) {
       const size_t o = g.Index(0, y);
-      decided[size_t(y)] = row(k, y, g.depth.data() + o, g.normalX.data() + o, g.normalY.data() + o,
+      decided[size_t(y)] = row(k, 0, y, g.width, g.depth.data() + o, g.normalX.data() + o, g.normalY.data() + o,
                                g.normalZ.data() + o, visibility.data() + o, taps[size_t(y)]);
     }
   });
@@ -242,15 +245,36 @@ ShadowStats Run(const ShadowMap& map, const raster::Camera& camera, const raster
     stats.pretestDecided += decided[size_t(y)];
     stats.tapsTaken += taps[size_t(y)];
   }
-  for (size_t i = 0; i < n; ++i) {
-    const float dep = g.depth[i];
-    const bool covered = dep < 3.0e38f && dep > 0.0f;
-    stats.covered += covered ? 1 : 0;
-  }
+  for (size_t i = 0; i < n; ++i) stats.covered += Covered(g.depth[i]) ? 1 : 0;
   return stats;
 }
 
 }  // namespace
+
+ShadowTileFilter::ShadowTileFilter(const ShadowMap& map, const raster::Camera& eyeCamera,
+                                   const ShadowOptions& options)
+    : valid_(map.valid) {
+  SOFTMOL_CHECK(ValidShadowOptions(options));
+  if (valid_) k_ = detail::MakeShadowConstants(map, eyeCamera, options, eyeCamera.width);
+}
+
+ShadowStats ShadowTileFilter::operator()(const raster::TileSamples& t, float* visibility) const {
+  SOFTMOL_CHECK(t.depth && t.normalX && t.normalY && t.normalZ);
+  const int width = t.x1 - t.x0;
+  const size_t n = size_t(width) * size_t(t.y1 - t.y0);
+  ShadowStats stats;
+  if (!valid_) {
+    std::fill(visibility, visibility + n, 1.0f);
+    return stats;
+  }
+  for (int y = t.y0; y < t.y1; ++y) {
+    const size_t o = t.Index(t.x0, y);
+    stats.pretestDecided += detail::ShadowRow(k_, t.x0, y, width, t.depth + o, t.normalX + o, t.normalY + o,
+                                              t.normalZ + o, visibility + o, stats.tapsTaken);
+  }
+  for (size_t i = 0; i < n; ++i) stats.covered += Covered(t.depth[i]) ? 1 : 0;
+  return stats;
+}
 
 ShadowStats ShadowFactors(const ShadowMap& map, const raster::Camera& eyeCamera,
                           const raster::GBuffer& gbuffer, const ShadowOptions& options,

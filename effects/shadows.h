@@ -100,13 +100,30 @@ struct ShadowConstants {
 ShadowConstants MakeShadowConstants(const ShadowMap& map, const raster::Camera& eyeCamera,
                                     const ShadowOptions& options, int width);
 
-// One row of samples; returns the number of samples the pre-test decided, adds to `taps`.
-// Thread-safe for distinct rows.
-uint32_t ShadowRow(const ShadowConstants& k, int y, const float* depth, const float* nx,
+// `count` samples of row y from column x0 (a whole row, or a tile's part of it; the pointers
+// point at column x0); returns the number of samples the pre-test decided, adds to `taps`.
+// Thread-safe for distinct samples.
+uint32_t ShadowRow(const ShadowConstants& k, int x0, int y, int count, const float* depth, const float* nx,
                    const float* ny, const float* nz, float* visibility, uint64_t& taps) noexcept;
-uint32_t ShadowRowScalar(const ShadowConstants& k, int y, const float* depth, const float* nx,
-                         const float* ny, const float* nz, float* visibility,
+uint32_t ShadowRowScalar(const ShadowConstants& k, int x0, int y, int count, const float* depth,
+                         const float* nx, const float* ny, const float* nz, float* visibility,
                          uint64_t& taps) noexcept;
 
 }  // namespace detail
+
+// The tile form, for the fused tile pipeline (effects/frame_renderer.cpp): ShadowFactors'
+// values (and its statistics, summed over tiles) for the samples of one tile of a G-buffer
+// rendered with `eyeCamera`, each tile row one ShadowRow. Safe to call on disjoint tiles in
+// parallel.
+class ShadowTileFilter {
+ public:
+  ShadowTileFilter(const ShadowMap& map, const raster::Camera& eyeCamera, const ShadowOptions& options);
+  // `visibility` holds the tile's samples at tile.Index(x, y); the tile needs depth and normal.
+  ShadowStats operator()(const raster::TileSamples& tile, float* visibility) const;
+
+ private:
+  bool valid_;
+  detail::ShadowConstants k_{};
+};
+
 }  // namespace softmol::effects

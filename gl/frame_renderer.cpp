@@ -216,13 +216,13 @@ void GlAovs(GlPassContext&) {}  // taken from the read-back that ends every fram
 // The GL twin of each registered pass unit, by PassId (effects/pass_list.h); null: not mirrored.
 using GlPassFn = void (*)(GlPassContext&);
 constexpr GlPassFn kGlPasses[] = {
-    GlGBuffer,     // kGBuffer
     GlAoBake,      // kAoBake
-    GlBakedAoLookup,  // kBakedAoLookup
     GlOccupancyPyramid,  // kOccupancyPyramid
+    GlShadowMap,   // kShadowMap
+    GlGBuffer,     // kGBuffer
+    GlBakedAoLookup,  // kBakedAoLookup
     GlConeAo,      // kConeAo
     GlReferenceAo,  // kReferenceAo
-    GlShadowMap,   // kShadowMap
     GlShadows,     // kShadows
     GlOutlines,    // kOutlines
     GlDepthHalos,  // kDepthHalos

@@ -78,6 +78,7 @@ struct TileSamples {
   const float* line = nullptr;
   const float* capped = nullptr;
   size_t Index(int x, int y) const { return size_t(y - y0) * size_t(stride) + size_t(x - x0); }
+  size_t Count() const { return size_t(stride) * size_t(y1 - y0); }  // samples in each plane
 };
 
 // The fused tile pipeline's entry (effects/frame_renderer.cpp): passes that read only a

@@ -9,7 +9,9 @@ namespace {
 
 // Sub-sample (s/2, s/2) of each output pixel: depth, normals and ids must not be averaged
 // across a silhouette.
-void ResolveAovs(const raster::GBuffer& g, const std::vector<float>& ao, const RenderOptions& o,
+// `sampleWidth` is the frame's, not g.width: when no AOV reads the G-buffer, the fused tile
+// pipeline leaves it unwritten and the AO plane alone is read.
+void ResolveAovs(const raster::GBuffer& g, int sampleWidth, const std::vector<float>& ao, const RenderOptions& o,
                  RenderedFrame& f) {
   const int s = o.ssaa;
   tbb::parallel_for(tbb::blocked_range<int>(0, f.height, 8), [&](const tbb::blocked_range<int>& rows) {
@@ -17,7 +19,7 @@ void ResolveAovs(const raster::GBuffer& g, const std::vector<float>& ao, const R
       const int y = f.height - 1 - row;  // G-buffer rows are bottom-up, files top-down
       for (int x = 0; x < f.width; ++x) {
         const size_t out = size_t(row) * size_t(f.width) + size_t(x);
-        const size_t c = size_t(y * s + s / 2) * size_t(g.width) + size_t(x * s + s / 2);
+        const size_t c = size_t(y * s + s / 2) * size_t(sampleWidth) + size_t(x * s + s / 2);
         if (o.aovs & kAovDepth) f.depth[out] = g.depth[c];
         if (o.aovs & kAovNormal) {
           const bool covered = g.primitiveId[c] != raster::kNoPrimitive;
@@ -43,7 +45,7 @@ void RunAovs(FrameContext& c) {
   f.normalZ.resize(aovs & kAovNormal ? n : 0);
   f.id.resize(aovs & kAovId ? n : 0);
   f.ao.resize(aovs & kAovAo ? n : 0);
-  ResolveAovs(c.res.gbuffer, c.res.ao, c.options, f);
+  ResolveAovs(c.res.gbuffer, c.camera.width, c.res.ao, c.options, f);
 }
 
 bool AovsWanted(const RenderOptions& o) { return o.aovs != 0; }

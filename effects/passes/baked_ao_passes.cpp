@@ -25,6 +25,16 @@ void RunLookup(FrameContext& c) {
   ao::LookupBakedAo(c.res.atlas, c.res.gbuffer, c.res.ao);
 }
 
+// The fused form: each tile's samples looked up as the G-buffer pass draws them.
+TileStage PrepareLookupTiles(FrameContext& c) {
+  const ao::AoAtlas& atlas = c.res.atlas;
+  return {[&atlas](TileWork& w) {
+            const raster::TileSamples& t = w.samples;
+            ao::LookupBakedAoSamples(atlas, t.primitiveId, t.surfaceU, t.surfaceV, t.surfaceW, t.Count(), w.ao);
+          },
+          {}};
+}
+
 bool Baked(const RenderOptions& o) { return o.ao == AoMode::kBaked; }
 uint64_t BakeReads(const RenderOptions&) { return kBufScene; }
 uint64_t LookupReads(const RenderOptions&) { return kBufAoAtlas | kBufPrimitiveId | kBufSurfaceCoord; }
@@ -34,6 +44,7 @@ uint64_t LookupReads(const RenderOptions&) { return kBufAoAtlas | kBufPrimitiveI
 extern const PassUnit kAoBakePass = {PassId::kAoBake, "ao bake", "--ao baked", /*perSample=*/false, /*bandBorder=*/0, Baked,
                                      BakeReads, kBufAoAtlas, RunBake, NoParams};
 extern const PassUnit kBakedAoLookupPass = {PassId::kBakedAoLookup, "baked ao lookup", "--ao baked",
-                                            /*perSample=*/true, /*bandBorder=*/0, Baked, LookupReads, kBufAo, RunLookup, NoParams};
+                                            /*perSample=*/true, /*bandBorder=*/0, Baked, LookupReads, kBufAo, RunLookup, NoParams,
+                                            PrepareLookupTiles};
 
 }  // namespace softmol::effects

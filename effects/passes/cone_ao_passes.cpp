@@ -15,6 +15,12 @@ void RunCones(FrameContext& c) {
   ao::ConeTraceAo(c.res.pyramid, c.camera, c.res.gbuffer, c.options.cone, c.res.ao);
 }
 
+// The fused form: the cones of each tile's samples traced as the G-buffer pass draws them.
+TileStage PrepareConeTiles(FrameContext& c) {
+  const ao::ConeTileTracer tracer(c.res.pyramid, c.camera, c.options.cone);
+  return {[tracer](TileWork& w) { tracer(w.samples, w.ao); }, {}};
+}
+
 bool Cone(const RenderOptions& o) { return o.ao == AoMode::kCone; }
 uint64_t PyramidReads(const RenderOptions&) { return kBufScene; }
 uint64_t ConeReads(const RenderOptions&) { return kBufOccupancy | kBufDepth | kBufNormal; }
@@ -44,6 +50,6 @@ extern const PassUnit kOccupancyPyramidPass = {PassId::kOccupancyPyramid, "occup
                                                /*perSample=*/false, /*bandBorder=*/0, Cone, PyramidReads, kBufOccupancy, RunPyramid,
                                                PyramidParams};
 extern const PassUnit kConeAoPass = {PassId::kConeAo, "cone ao", "--ao cone", /*perSample=*/true, /*bandBorder=*/0, Cone, ConeReads,
-                                     kBufAo, RunCones, ConeParams};
+                                     kBufAo, RunCones, ConeParams, PrepareConeTiles};
 
 }  // namespace softmol::effects

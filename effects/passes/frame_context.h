@@ -3,6 +3,7 @@
 // written. Only the pass units and the frame renderer include it.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,23 @@
 #include "raster/frame.h"
 
 namespace softmol::effects {
+
+// One tile as the passes fused into the G-buffer pass see it: the tile's samples, and the
+// tile-local planes (at samples.Index(x, y)) that the fused passes before a pass wrote — the
+// per-sample buffers that pass by pass are full-frame.
+struct TileWork {
+  const raster::TileSamples& samples;
+  float* ao;      // kBufAo
+  float* shadow;  // kBufShadow
+};
+
+// A pass's fused form (PassUnit::prepareTiles): `run` on every tile, from the task that drew it
+// (tiles in parallel, each once); `finish` (optional) once after the G-buffer pass, for what the
+// tiles summed (statistics).
+struct TileStage {
+  std::function<void(TileWork&)> run;
+  std::function<void()> finish;
+};
 
 struct FrameContext {
   const raster::PrimitiveScene& scene;
@@ -21,8 +39,8 @@ struct FrameContext {
   RenderedFrame& frame;
   std::string note;        // appended to the running pass's profile name, e.g. " (reused)"
   bool haloReady = false;  // the halo volume holds something to march through
-  // What the G-buffer pass hands each tile to: the consumer of the pass fused into its tiles
-  // (PassUnit::prepareTiles), empty when none is.
+  // What the G-buffer pass hands each tile to: the passes fused into its tiles (set by the frame
+  // renderer from their PassUnit::prepareTiles), empty when none are.
   raster::TileHook tileHook;
 
   size_t Samples() const { return size_t(res.gbuffer.width) * size_t(res.gbuffer.height); }

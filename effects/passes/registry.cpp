@@ -8,9 +8,9 @@ namespace softmol::effects {
 namespace {
 
 constexpr const PassUnit* kRegistry[] = {
-    &kGBufferPass,   &kAoBakePass,    &kBakedAoLookupPass, &kOccupancyPyramidPass, &kConeAoPass,
-    &kReferenceAoPass, &kShadowMapPass, &kShadowsPass,     &kOutlinesPass,         &kDepthHalosPass,
-    &kShadingPass,   &kHaloPyramidPass, &kObjectHalosPass, &kAovsPass,
+    &kAoBakePass,      &kOccupancyPyramidPass, &kShadowMapPass, &kGBufferPass,  &kBakedAoLookupPass,
+    &kConeAoPass,      &kReferenceAoPass,      &kShadowsPass,   &kOutlinesPass, &kDepthHalosPass,
+    &kShadingPass,     &kHaloPyramidPass,      &kObjectHalosPass, &kAovsPass,
 };
 static_assert(std::size(kRegistry) == size_t(PassId::kCount), "one unit per PassId");
 
@@ -44,8 +44,11 @@ const PassUnit& Pass(PassId id) {
 }
 
 io::ParamTable<RenderOptions> RenderParams() {
+  // The G-buffer's options first, then each pass's in run order: the order --help lists them.
   io::ParamTable<RenderOptions> all = FrameParams();
-  for (const PassUnit* unit : kRegistry) io::Append(all, unit->params());
+  io::Append(all, kGBufferPass.params());
+  for (const PassUnit* unit : kRegistry)
+    if (unit != &kGBufferPass) io::Append(all, unit->params());
   return all;
 }
 

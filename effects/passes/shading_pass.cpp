@@ -18,9 +18,10 @@ void RunShading(FrameContext& c) {
   ShadeAndResolve(c.res.gbuffer, o.ssaa, o.shading, Backdrop{o.background, o.transparent}, in, f.rgba);
 }
 
-// The fused form: the shading and resolve of each tile as the G-buffer pass draws it, into the
-// 8-bit pixels alone when the caller writes those and no later pass composites into the colour.
-void PrepareShadingTiles(FrameContext& c) {
+// The fused form: the shading and resolve of each tile as the G-buffer pass draws it, with the
+// AO and shadow of the passes fused before it, into the 8-bit pixels alone when the caller
+// writes those and no later pass composites into the colour.
+TileStage PrepareShadingTiles(FrameContext& c) {
   const RenderOptions& o = c.options;
   const ShadeInputs in = MakeShadeInputs(o, c.scene, c.camera);
   bool bytesOnly = o.srgb8;
@@ -39,8 +40,10 @@ void PrepareShadingTiles(FrameContext& c) {
     f.rgba.resize(4 * pixels);
     out.rgba = f.rgba;
   }
-  c.tileHook.consume = TileShader(o.shading, Backdrop{o.background, o.transparent}, in, o.ssaa, f.width, f.height,
-                                  out);
+  const TileShader shader(o.shading, Backdrop{o.background, o.transparent}, in, o.ssaa, f.width, f.height, out);
+  const bool ao = AoSeen(o), shadow = o.shadows;
+  return {[shader, ao, shadow](TileWork& w) { shader(w.samples, ao ? w.ao : nullptr, shadow ? w.shadow : nullptr); },
+          {}};
 }
 
 bool ColorWanted(const RenderOptions& o) { return o.color; }

@@ -1,6 +1,9 @@
 // effects/passes/shadow_passes.cpp — soft shadows (Sigg et al. 2006 §4): the light's depth
 // map, then percentage-closer filtering of every sample against it, with the penumbra
 // pre-test.
+#include <atomic>
+#include <memory>
+
 #include "effects/passes/units.h"
 
 namespace softmol::effects {
@@ -17,6 +20,23 @@ void RunShadowMap(FrameContext& c) {
 void RunShadows(FrameContext& c) {
   c.res.shadow.resize(c.Samples());
   c.frame.shadowStats = ShadowFactors(c.res.shadowMap, c.camera, c.res.gbuffer, c.options.shadow, c.res.shadow);
+}
+
+// The fused form: each tile's samples filtered as the G-buffer pass draws them; the tiles'
+// statistics summed into the frame's once the pass is done.
+TileStage PrepareShadowTiles(FrameContext& c) {
+  struct Sums {
+    std::atomic<uint64_t> covered{0}, decided{0}, taps{0};
+  };
+  const auto sums = std::make_shared<Sums>();
+  const ShadowTileFilter filter(c.res.shadowMap, c.camera, c.options.shadow);
+  ShadowStats& frameStats = c.frame.shadowStats;
+  auto run = [filter, sums](TileWork& w) {
+    const ShadowStats s = filter(w.samples, w.shadow);
+    sums->covered += s.covered, sums->decided += s.pretestDecided, sums->taps += s.tapsTaken;
+  };
+  auto finish = [sums, &frameStats] { frameStats = {sums->covered, sums->decided, sums->taps}; };
+  return {run, finish};
 }
 
 bool Shadows(const RenderOptions& o) { return o.shadows; }
@@ -50,6 +70,6 @@ io::ParamTable<RenderOptions> ShadowParams() {
 extern const PassUnit kShadowMapPass = {PassId::kShadowMap, "shadow map", "--shadows", /*perSample=*/false, /*bandBorder=*/0, Shadows,
                                         MapReads, kBufShadowMap, RunShadowMap, ShadowMapParams};
 extern const PassUnit kShadowsPass = {PassId::kShadows, "shadows", "--shadows", /*perSample=*/true, /*bandBorder=*/0, Shadows,
-                                      ShadowReads, kBufShadow, RunShadows, ShadowParams};
+                                      ShadowReads, kBufShadow, RunShadows, ShadowParams, PrepareShadowTiles};
 
 }  // namespace softmol::effects

@@ -57,7 +57,7 @@ TEST(CliLooks, FlaglessRenderBakesAoForSmallStructures) {
   for (const char* molecule : molecules) {
     const CommandResult r = Render(molecule, "", "auto_small");
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_EQ(PassesRun(r.out), (Passes{"gbuffer", "ao bake", "baked ao lookup", "shading"})) << molecule << r.out;
+    EXPECT_EQ(PassesRun(r.out), (Passes{"ao bake", "gbuffer", "baked ao lookup", "shading"})) << molecule << r.out;
   }
 }
 
@@ -67,7 +67,7 @@ TEST(CliLooks, FlaglessTrajectoryTracesCones) {
                                          "' --frames 0:1 -o '" + (dir / "f_%05d.png").string() + "' --size 64x48",
                                      dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  EXPECT_EQ(PassesRun(r.out), (Passes{"gbuffer", "occupancy pyramid", "cone ao", "shading"})) << r.out;
+  EXPECT_EQ(PassesRun(r.out), (Passes{"occupancy pyramid", "gbuffer", "cone ao", "shading"})) << r.out;
 }
 
 TEST(CliLooks, FlaglessAssemblyOfAMillionAtomsTracesCones) {
@@ -76,7 +76,7 @@ TEST(CliLooks, FlaglessAssemblyOfAMillionAtomsTracesCones) {
 #endif
   const CommandResult r = Render("3J6R.pdb", "--assembly 1", "auto_assembly", "48x36");
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  EXPECT_EQ(PassesRun(r.out), (Passes{"gbuffer", "occupancy pyramid", "cone ao", "shading"})) << r.out;
+  EXPECT_EQ(PassesRun(r.out), (Passes{"occupancy pyramid", "gbuffer", "cone ao", "shading"})) << r.out;
 }
 
 TEST(CliLooks, AoNoneAndAoStrengthZeroGiveTheSameColourAndRunNoAo) {
@@ -98,7 +98,7 @@ TEST(CliLooks, AoNoneAndAoStrengthZeroGiveTheSameColourAndRunNoAo) {
 }
 
 TEST(CliLooks, EveryPresetRunsExactlyItsPasses) {
-  const Passes baked = {"gbuffer", "ao bake", "baked ao lookup"};
+  const Passes baked = {"ao bake", "gbuffer", "baked ao lookup"};
   const auto with = [](Passes p, std::initializer_list<const char*> more) {
     p.insert(p.end(), more.begin(), more.end());
     return p;
@@ -111,9 +111,9 @@ TEST(CliLooks, EveryPresetRunsExactlyItsPasses) {
       {"plain", "pept.pdb", {"gbuffer", "shading"}},
       {"qutemol", "pept.pdb", with(baked, {"depth halos", "shading"})},
       {"illustrative", "pept.pdb", with(baked, {"shading"})},  // contours are drawn by the G-buffer pass
-      {"shadows", "pept.pdb", {"gbuffer", "shadow map", "shadows", "outlines", "shading"}},
-      {"dynamic", "3sn6.pdb", {"gbuffer", "occupancy pyramid", "cone ao", "shading", "halo pyramid", "halos"}},
-      {"dynamic", "pept.pdb", {"gbuffer", "occupancy pyramid", "cone ao", "shading"}},  // no ligand: no halo
+      {"shadows", "pept.pdb", {"shadow map", "gbuffer", "shadows", "outlines", "shading"}},
+      {"dynamic", "3sn6.pdb", {"occupancy pyramid", "gbuffer", "cone ao", "shading", "halo pyramid", "halos"}},
+      {"dynamic", "pept.pdb", {"occupancy pyramid", "gbuffer", "cone ao", "shading"}},  // no ligand: no halo
       {"publication", "pept.pdb", with(baked, {"shading"})},
   };
   for (const auto& c : cases) {
@@ -126,7 +126,7 @@ TEST(CliLooks, EveryPresetRunsExactlyItsPasses) {
 TEST(CliLooks, FlagsAndSceneKeysOverrideThePreset) {
   const CommandResult flag = Render("pept.pdb", "--preset qutemol --ao cone", "override_flag");
   ASSERT_EQ(flag.exitCode, 0) << flag.err;
-  EXPECT_EQ(PassesRun(flag.out), (Passes{"gbuffer", "occupancy pyramid", "cone ao", "depth halos", "shading"}));
+  EXPECT_EQ(PassesRun(flag.out), (Passes{"occupancy pyramid", "gbuffer", "cone ao", "depth halos", "shading"}));
   // The flag may come before the preset: a given value always wins.
   const CommandResult before = Render("pept.pdb", "--ao none --preset qutemol", "override_before");
   ASSERT_EQ(before.exitCode, 0) << before.err;
@@ -144,7 +144,7 @@ TEST(CliLooks, FlagsAndSceneKeysOverrideThePreset) {
 TEST(CliLooks, LightingFullCastsShadows) {
   const CommandResult r = Render("pept.pdb", "--ao none --lighting full", "lighting_full");
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  EXPECT_EQ(PassesRun(r.out), (Passes{"gbuffer", "shadow map", "shadows", "shading"}));
+  EXPECT_EQ(PassesRun(r.out), (Passes{"shadow map", "gbuffer", "shadows", "shading"}));
 }
 
 TEST(CliLooks, ListPresetsPrintsEveryPresetAndRig) {

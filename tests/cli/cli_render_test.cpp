@@ -159,7 +159,7 @@ TEST(CliRender, ProfileShowsWhatEachPassReadsAndWrites) {
       EXPECT_EQ(e["args"]["writes"], "shadow");
     }
   }
-  EXPECT_EQ(passes, (std::vector<std::string>{"gbuffer", "shadow map", "shadows", "shading"}));
+  EXPECT_EQ(passes, (std::vector<std::string>{"shadow map", "gbuffer", "shadows", "shading"}));
   EXPECT_TRUE(shadowCounters);
 }
 

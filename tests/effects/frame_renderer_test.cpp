@@ -72,13 +72,13 @@ TEST(PassList, EachSceneRunsOnlyWhatItCallsFor) {
   RenderOptions o;
   EXPECT_EQ(PlanNames(o), (Names{"gbuffer", "shading"}));
   o.ao = AoMode::kCone;
-  EXPECT_EQ(PlanNames(o), (Names{"gbuffer", "occupancy pyramid", "cone ao", "shading"}));
+  EXPECT_EQ(PlanNames(o), (Names{"occupancy pyramid", "gbuffer", "cone ao", "shading"}));
   // AO nobody reads is not computed: AOVs without the AO plane, and no colour.
   o.color = false;
   o.aovs = kAovDepth;
   EXPECT_EQ(PlanNames(o), (Names{"gbuffer", "aovs"}));
   o.aovs = kAovDepth | kAovAo;
-  EXPECT_EQ(PlanNames(o), (Names{"gbuffer", "occupancy pyramid", "cone ao", "aovs"}));
+  EXPECT_EQ(PlanNames(o), (Names{"occupancy pyramid", "gbuffer", "cone ao", "aovs"}));
   o.ao = AoMode::kReference;
   EXPECT_EQ(PlanNames(o), (Names{"gbuffer", "reference ao", "aovs"}));
   // A highlight needs colour to composite over; without colour it is not drawn.
@@ -106,7 +106,7 @@ TEST(PassList, EffectsAddOnlyTheirOwnPasses) {
   EXPECT_NE(plan[0].writes & kBufCapped, 0u);
   o.nearClip = 0;
   o.shadows = true;
-  EXPECT_EQ(PlanNames(o), (Names{"gbuffer", "shadow map", "shadows", "shading"}));
+  EXPECT_EQ(PlanNames(o), (Names{"shadow map", "gbuffer", "shadows", "shading"}));
   o.shadows = false;
   o.outlines = true;
   EXPECT_EQ(PlanNames(o), (Names{"gbuffer", "outlines", "shading"}));
@@ -118,17 +118,17 @@ TEST(PassList, EffectsAddOnlyTheirOwnPasses) {
   EXPECT_EQ(PlanNames(o), (Names{"gbuffer", "shading"}));
   o.ao = AoMode::kBaked;
   plan = PlanPasses(o);
-  EXPECT_EQ(PlanNames(o), (Names{"gbuffer", "ao bake", "baked ao lookup", "shading"}));
-  EXPECT_NE(plan[0].writes & kBufSurfaceCoord, 0u) << "the baked lookup reads surface coordinates";
+  EXPECT_EQ(PlanNames(o), (Names{"ao bake", "gbuffer", "baked ao lookup", "shading"}));
+  EXPECT_NE(plan[1].writes & kBufSurfaceCoord, 0u) << "the baked lookup reads surface coordinates";
   // Everything at once, in the order the passes run.
   o.contourWidth = 0.3f, o.nearClip = 10, o.shadows = true, o.outlines = true, o.depthHalos = true;
   o.highlight.spheres = {1};
   o.aovs = kAovAo;
-  EXPECT_EQ(PlanNames(o), (Names{"gbuffer", "ao bake", "baked ao lookup", "shadow map", "shadows", "outlines",
+  EXPECT_EQ(PlanNames(o), (Names{"ao bake", "shadow map", "gbuffer", "baked ao lookup", "shadows", "outlines",
                                  "depth halos", "shading", "halo pyramid", "halos", "aovs"}));
   // Without colour, only the AO feeds an output: every effect pass drops out.
   o.color = false;
-  EXPECT_EQ(PlanNames(o), (Names{"gbuffer", "ao bake", "baked ao lookup", "aovs"}));
+  EXPECT_EQ(PlanNames(o), (Names{"ao bake", "gbuffer", "baked ao lookup", "aovs"}));
   o.aovs = kAovDepth;
   EXPECT_EQ(PlanNames(o), (Names{"gbuffer", "aovs"})) << "no AO bake when nobody reads AO";
 }
@@ -140,6 +140,7 @@ TEST(PassList, PassesDeclareWhatTheyReadAndWrite) {
   ASSERT_EQ(plan.size(), 4u);
   EXPECT_EQ(BufferNames(plan[2].reads), "depth, normal, occupancy");
   EXPECT_EQ(BufferNames(plan[2].writes), "ao");
+  EXPECT_EQ(plan[1].id, PassId::kGBuffer);
   // Every buffer a kept pass reads is written by an earlier kept pass (or is the scene).
   uint64_t written = kBufScene;
   for (const PlannedPass& p : plan) {
@@ -147,7 +148,7 @@ TEST(PassList, PassesDeclareWhatTheyReadAndWrite) {
     written |= p.writes;
   }
   // The G-buffer writes only what someone reads: no surface coordinates, lines or caps.
-  EXPECT_EQ(BufferNames(plan[0].writes), "depth, normal, base color, primitive id");
+  EXPECT_EQ(BufferNames(plan[1].writes), "depth, normal, base color, primitive id");
 }
 
 TEST(PassList, TheFrameRunsExactlyThePlan) {
@@ -163,7 +164,7 @@ TEST(PassList, TheFrameRunsExactlyThePlan) {
   EXPECT_EQ(PassNames(f), PlanNames(o));
   // The second frame of an unchanged scene reuses the pyramid, and says so.
   const RenderedFrame again = RenderFrame(scene, cam, o, &res);
-  EXPECT_EQ(PassNames(again)[1], "occupancy pyramid (reused)");
+  EXPECT_EQ(PassNames(again)[0], "occupancy pyramid (reused)");
   // Every effect at once runs exactly its plan too; the atlas is baked once per scene.
   o.ao = AoMode::kBaked;
   o.bake.directions = 16;
@@ -177,11 +178,11 @@ TEST(PassList, TheFrameRunsExactlyThePlan) {
   for (float v : all.rgba) ASSERT_TRUE(std::isfinite(v));
   for (float v : all.ao) ASSERT_TRUE(v >= 0.0f && v <= 1.0f);
   const RenderedFrame allAgain = RenderFrame(scene, cam, o, &res);
-  EXPECT_EQ(PassNames(allAgain)[1], "ao bake (reused)");
+  EXPECT_EQ(PassNames(allAgain)[0], "ao bake (reused)");
   EXPECT_EQ(allAgain.rgba, all.rgba);
   // A moved scene is baked again.
   const auto moved = OneSphere({0.5, 0, 0});
-  EXPECT_EQ(PassNames(RenderFrame(moved, cam, o, &res))[1], "ao bake");
+  EXPECT_EQ(PassNames(RenderFrame(moved, cam, o, &res))[0], "ao bake");
 }
 
 TEST(FrameRenderer, SupersampleResolveAveragesCoverage) {
@@ -262,7 +263,7 @@ TEST(FrameRenderer, ConeAoRunsItsPassesAndReusesThePyramid) {
   RenderedFrame f;
   RenderFrame(scene, cam, o, f, &resources);
   EXPECT_EQ(PassNames(f),
-            (std::vector<std::string>{"gbuffer", "occupancy pyramid", "cone ao", "shading", "aovs"}));
+            (std::vector<std::string>{"occupancy pyramid", "gbuffer", "cone ao", "shading", "aovs"}));
   ASSERT_EQ(f.ao.size(), size_t(48 * 32));
   float lo = 1.0f;
   for (float a : f.ao) {
@@ -274,7 +275,7 @@ TEST(FrameRenderer, ConeAoRunsItsPassesAndReusesThePyramid) {
   // Nothing moved: the second frame reuses the pyramid, and gives the same bits.
   const std::vector<float> first = f.ao;
   RenderFrame(scene, cam, o, f, &resources);
-  EXPECT_EQ(f.passes[1].name, "occupancy pyramid (reused)");
+  EXPECT_EQ(f.passes[0].name, "occupancy pyramid (reused)");
   EXPECT_EQ(f.ao, first);
 }
 

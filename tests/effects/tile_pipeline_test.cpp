@@ -1,9 +1,10 @@
 // tests/effects/tile_pipeline_test.cpp — the fused tile pipeline (effects/frame_renderer.cpp):
-// shading run inside the G-buffer pass's tiles gives the bytes of the pass-by-pass frame for
-// every supersampling factor, tile size, frame size that does not divide into tiles, and every
-// shading input the G-buffer alone feeds (contour lines, near-plane caps, depth cue, transparent
-// backdrop), also as the 8-bit pixels a PNG takes; it runs only where nothing else needs the
-// whole G-buffer, and the profile says so.
+// the per-sample passes run inside the G-buffer pass's tiles (baked AO lookup, cone AO, shadow
+// filtering, shading) give the bytes of the pass-by-pass frame for every supersampling factor,
+// tile size, frame size that does not divide into tiles, and every shading input the G-buffer
+// and those passes feed (contour lines, near-plane caps, depth cue, transparent backdrop, AO,
+// shadows), also as the 8-bit pixels a PNG takes; they run only where nothing else needs a
+// whole frame, what later passes read still comes out, and the profile says what ran where.
 #include <cstring>
 #include <string>
 #include <vector>
@@ -18,6 +19,18 @@
 namespace softmol::effects {
 namespace {
 
+// Bakes and maps small enough for a test, still with every part of their passes.
+void SmallBake(RenderOptions& o) {
+  o.ao = AoMode::kBaked;
+  o.bake.directions = 16;
+  o.bake.shadowMapSize = 128;
+  o.bake.atlas.textureSide = 256;
+}
+void SmallShadows(RenderOptions& o) {
+  o.shadows = true;
+  o.shadow.mapSize = 512;
+}
+
 struct Look {
   std::string name;
   void (*apply)(RenderOptions&);
@@ -29,7 +42,15 @@ const Look kLooks[] = {
     {"near clip", [](RenderOptions& o) { o.nearClip = 1.0f; }},  // set per scene below
     {"depth cue", [](RenderOptions& o) { o.depthCue = 0.6f; }},
     {"transparent", [](RenderOptions& o) { o.transparent = true; }},
+    {"baked ao", [](RenderOptions& o) { SmallBake(o); }},
+    {"cone ao", [](RenderOptions& o) { o.ao = AoMode::kCone; }},
+    {"shadows", [](RenderOptions& o) { SmallShadows(o); }},
+    {"baked ao + shadows + cue", [](RenderOptions& o) { SmallBake(o), SmallShadows(o), o.depthCue = 0.6f; }},
+    {"cone ao + shadows, transparent", [](RenderOptions& o) {
+       o.ao = AoMode::kCone, SmallShadows(o), o.transparent = true;
+     }},
 };
+constexpr int kLookCount = int(std::size(kLooks));
 
 template <class A, class B>
 bool SameFloats(const A& a, const B& b) {
@@ -42,9 +63,20 @@ const PassTiming* Find(const RenderedFrame& f, const std::string& name) {
   return nullptr;
 }
 
-bool ShadedInTiles(const RenderedFrame& f) {
-  const PassTiming* p = Find(f, "shading");
+bool InTiles(const RenderedFrame& f, const std::string& pass) {
+  const PassTiming* p = Find(f, pass);
   return p != nullptr && p->inGBufferTiles;
+}
+bool ShadedInTiles(const RenderedFrame& f) { return InTiles(f, "shading"); }
+
+// Every pass the frame ran besides the G-buffer and the scene-wide maps ran in its tiles.
+bool AllPerSamplePassesInTiles(const RenderedFrame& f) {
+  for (const PassTiming& p : f.passes) {
+    const bool mapOrGBuffer = p.name == "gbuffer" || p.name.rfind("ao bake", 0) == 0 ||
+                              p.name.rfind("occupancy pyramid", 0) == 0 || p.name.rfind("shadow map", 0) == 0;
+    if (!mapOrGBuffer && !p.inGBufferTiles) return false;
+  }
+  return true;
 }
 
 // A scene with spheres and cylinders at a size that leaves partial tiles on two sides.
@@ -72,12 +104,18 @@ TEST(TilePipeline, FusedFramesAreThePassByPassFramesByteForByte) {
         const RenderedFrame passes = RenderFrame(s.scene, s.camera, o);
         const std::string what = look.name + ", ssaa " + std::to_string(ssaa) + ", tile " + std::to_string(tile);
         EXPECT_TRUE(ShadedInTiles(fused)) << what;
+        EXPECT_TRUE(AllPerSamplePassesInTiles(fused)) << what;
         EXPECT_FALSE(ShadedInTiles(passes)) << what;
         ASSERT_EQ(fused.rgba.size(), size_t(4 * 203 * 97)) << what;
         EXPECT_TRUE(SameFloats(fused.rgba, passes.rgba)) << what;
+        // The shadow filter's statistics, summed over tiles, are the whole frame's.
+        EXPECT_EQ(fused.shadowStats.covered, passes.shadowStats.covered) << what;
+        EXPECT_EQ(fused.shadowStats.pretestDecided, passes.shadowStats.pretestDecided) << what;
+        EXPECT_EQ(fused.shadowStats.tapsTaken, passes.shadowStats.tapsTaken) << what;
+        EXPECT_EQ(fused.shadowStats.covered > 0, o.shadows) << what;
         fusedFrames += ShadedInTiles(fused);
       }
-  EXPECT_EQ(fusedFrames, 5 * 3 * 3);
+  EXPECT_EQ(fusedFrames, kLookCount * 3 * 3);
 }
 
 TEST(TilePipeline, RunsOnlyWhereNothingElseNeedsTheWholeGBuffer) {
@@ -86,13 +124,23 @@ TEST(TilePipeline, RunsOnlyWhereNothingElseNeedsTheWholeGBuffer) {
   o.ssaa = 3;  // 3 does not divide a power-of-two tile: tiles would split pixels
   EXPECT_FALSE(ShadedInTiles(RenderFrame(s.scene, s.camera, o)));
   o.ssaa = 1;
-  o.shadows = true;  // shading reads the shadow pass's full-frame factors
-  EXPECT_FALSE(ShadedInTiles(RenderFrame(s.scene, s.camera, o)));
-  o.shadows = false;
   o.outlines = true;  // Sobel reads neighbours
   EXPECT_FALSE(ShadedInTiles(RenderFrame(s.scene, s.camera, o)));
   o.outlines = false;
-  EXPECT_TRUE(ShadedInTiles(RenderFrame(s.scene, s.camera, o)));
+  o.depthHalos = true;  // so do the halos
+  SmallShadows(o);
+  const RenderedFrame halos = RenderFrame(s.scene, s.camera, o);
+  EXPECT_FALSE(ShadedInTiles(halos));
+  EXPECT_FALSE(InTiles(halos, "shadows")) << "a chain that stops before the colour is not fused";
+  o.depthHalos = false;
+  o.ao = AoMode::kReference;  // the ray-traced AO has no tile form
+  o.reference.rays = 4;
+  EXPECT_FALSE(ShadedInTiles(RenderFrame(s.scene, s.camera, o)));
+  o.ao = AoMode::kCone;  // shadows and cone AO do
+  const RenderedFrame fused = RenderFrame(s.scene, s.camera, o);
+  EXPECT_TRUE(ShadedInTiles(fused));
+  EXPECT_TRUE(InTiles(fused, "cone ao"));
+  EXPECT_TRUE(InTiles(fused, "shadows"));
 }
 
 TEST(TilePipeline, TheGBufferIsWrittenForWhoeverReadsIt) {
@@ -129,6 +177,47 @@ TEST(TilePipeline, TheGBufferIsWrittenForWhoeverReadsIt) {
   EXPECT_EQ(withAovs.id, aovPasses.id);
 }
 
+// The fused passes' AO and shadow planes stay in the tiles unless someone reads them: an AOV
+// pass after the shading, or a caller that keeps the frame's buffers (the backend comparison,
+// the shadow study).
+TEST(TilePipeline, TheAoAndShadowPlanesComeOutForWhoeverReadsThem) {
+  const test::NamedScene s = Scene();
+  for (AoMode ao : {AoMode::kCone, AoMode::kBaked}) {
+    RenderOptions o;
+    if (ao == AoMode::kBaked) SmallBake(o);
+    o.ao = ao;
+    SmallShadows(o);
+    o.ssaa = 2;
+    o.fuseTiles = false;
+    FrameResources reference;
+    RenderFrame(s.scene, s.camera, o, &reference);
+    ASSERT_EQ(reference.ao.size(), size_t(4 * 203 * 97));
+    o.fuseTiles = true;
+
+    FrameResources kept;
+    kept.keepGBuffer = true;
+    EXPECT_TRUE(ShadedInTiles(RenderFrame(s.scene, s.camera, o, &kept)));
+    EXPECT_TRUE(SameFloats(kept.ao, reference.ao));
+    EXPECT_TRUE(SameFloats(kept.shadow, reference.shadow));
+
+    FrameResources unread;
+    EXPECT_TRUE(ShadedInTiles(RenderFrame(s.scene, s.camera, o, &unread)));
+    EXPECT_TRUE(unread.ao.empty());
+    EXPECT_TRUE(unread.shadow.empty());
+
+    o.aovs = kAovAo;  // the AOV alone: the G-buffer itself is not written, the AO plane is
+    FrameResources aovOnly;
+    const RenderedFrame fused = RenderFrame(s.scene, s.camera, o, &aovOnly);
+    o.fuseTiles = false;
+    const RenderedFrame passes = RenderFrame(s.scene, s.camera, o);
+    EXPECT_TRUE(ShadedInTiles(fused));
+    EXPECT_TRUE(aovOnly.gbuffer.depth.empty());
+    ASSERT_EQ(fused.ao.size(), size_t(203 * 97));
+    EXPECT_TRUE(SameFloats(fused.ao, passes.ao));
+    EXPECT_TRUE(SameFloats(fused.rgba, passes.rgba));
+  }
+}
+
 TEST(TilePipeline, TilesMakeThe8BitPixelsAPngTakes) {
   const test::NamedScene s = Scene();
   for (bool transparent : {false, true})
@@ -156,18 +245,32 @@ TEST(TilePipeline, TilesMakeThe8BitPixelsAPngTakes) {
 
 TEST(TilePipeline, TheProfileSplitsTheGBufferPassTime) {
   const test::NamedScene s = Scene();
-  RenderOptions o;
-  const RenderedFrame f = RenderFrame(s.scene, s.camera, o);
-  ASSERT_EQ(f.passes.size(), 2u);
-  const PassTiming& g = f.passes[0];
-  const PassTiming& shading = f.passes[1];
-  EXPECT_EQ(g.name, "gbuffer");
-  EXPECT_FALSE(g.inGBufferTiles);
-  EXPECT_GE(g.durationMs, 0.0);
-  EXPECT_GE(shading.durationMs, 0.0);
-  EXPECT_DOUBLE_EQ(shading.startMs, g.startMs + g.durationMs);  // the bars tile the pass
-  EXPECT_LE(shading.durationMs, f.rasterStats.rasterMs);
-  EXPECT_EQ(shading.reads, PlanPasses(o)[1].reads);
+  RenderOptions plain;
+  RenderOptions effects;
+  effects.ao = AoMode::kCone;
+  SmallShadows(effects);
+  for (const RenderOptions& o : {plain, effects}) {
+    const RenderedFrame f = RenderFrame(s.scene, s.camera, o);
+    const std::vector<PlannedPass> plan = PlanPasses(o);
+    ASSERT_EQ(f.passes.size(), plan.size());
+    size_t g = 0;
+    while (f.passes[g].name != "gbuffer") ++g;
+    EXPECT_FALSE(f.passes[g].inGBufferTiles);
+    EXPECT_GE(f.passes[g].durationMs, 0.0);
+    double inTiles = 0;
+    for (size_t i = g + 1; i < f.passes.size(); ++i) {
+      const PassTiming& p = f.passes[i];
+      EXPECT_TRUE(p.inGBufferTiles) << p.name;
+      EXPECT_GE(p.durationMs, 0.0) << p.name;
+      // The bars tile the pass, in plan order, each with its own reads.
+      EXPECT_DOUBLE_EQ(p.startMs, f.passes[i - 1].startMs + f.passes[i - 1].durationMs) << p.name;
+      EXPECT_EQ(p.name, plan[i].name);
+      EXPECT_EQ(p.reads, plan[i].reads) << p.name;
+      inTiles += p.durationMs;
+    }
+    EXPECT_EQ(f.passes.back().name, "shading");
+    EXPECT_LE(inTiles, f.rasterStats.rasterMs * (1 + 1e-9));
+  }
 }
 
 }  // namespace
