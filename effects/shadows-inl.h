@@ -73,11 +73,12 @@ struct Undecided {
   size_t count;
 };
 
-// Pass 1 over Lanes(d) samples of row y starting at x: everything up to the pre-test. Writes
-// the final visibility of background, back-facing and decided samples; appends the others to
-// `u`. Returns how many the pre-test decided.
+// Pass 1 over Lanes(d) samples of row y starting at x of a run whose first sample is column x0
+// (the pointers point at the run): everything up to the pre-test. Writes the final visibility of
+// background, back-facing and decided samples; appends the others to `u`, each with its index
+// base + x + lane into the block's visibility. Returns how many the pre-test decided.
 template <class D>
-HWY_INLINE size_t PretestSamples(D d, const detail::ShadowConstants& k, int x0, int y, size_t x,
+HWY_INLINE size_t PretestSamples(D d, const detail::ShadowConstants& k, int x0, int y, size_t x, int32_t base,
                                  const float* depth, const float* nxRow, const float* nyRow,
                                  const float* nzRow, float* visibility, Undecided& u,
                                  uint64_t& taps) {
@@ -140,7 +141,8 @@ HWY_INLINE size_t PretestSamples(D d, const detail::ShadowConstants& k, int x0, 
     hn::CompressStore(ly, undecided, d, u.ly + u.count);
     hn::CompressStore(receiver, undecided, d, u.receiver + u.count);
     hn::CompressStore(lit, undecided, d, u.lit + u.count);
-    u.count += hn::CompressStore(columns, hn::RebindMask(di, undecided), di, u.column + u.count);
+    u.count += hn::CompressStore(hn::Add(columns, hn::Set(di, base)), hn::RebindMask(di, undecided), di,
+                                 u.column + u.count);
   }
   return hn::CountTrue(d, decided);
 }
@@ -157,26 +159,36 @@ HWY_INLINE void FinishSamples(D d, const detail::ShadowConstants& k, const Undec
   hn::StoreU(hn::Mul(lit, hn::Set(d, k.invTaps)), d, result + j);
 }
 
-inline uint32_t ShadowRowImpl(const detail::ShadowConstants& k, int x0, int y, int samples,
+// `rows` runs of `samples` samples each, rows y0, y0 + 1, … from column x0, stored one after
+// the other (a whole frame row, or a tile): the pre-test for all of them, then the remaining taps
+// for all their undecided samples packed together, so that short runs (a tile's rows) still
+// fill whole vectors.
+inline uint32_t ShadowBlockImpl(const detail::ShadowConstants& k, int x0, int y0, int samples, int rows,
                               const float* depth, const float* nx, const float* ny, const float* nz,
                               float* visibility, uint64_t& taps) {
   const hn::ScalableTag<float> d;
   const hn::CappedTag<float, 1> d1;
   const size_t lanes = hn::Lanes(d), count = size_t(samples);
-  // Per-thread scratch for one row's packed samples (CompressStore may write a whole vector
+  // Per-thread scratch for the block's packed samples (CompressStore may write a whole vector
   // past the packed ones, hence the extra lanes).
   thread_local std::vector<float> scratch;
   thread_local std::vector<int32_t> columnScratch;
-  const size_t cap = count + lanes;
+  const size_t cap = count * size_t(rows) + lanes;
   if (scratch.size() < 5 * cap) scratch.resize(5 * cap);
   if (columnScratch.size() < cap) columnScratch.resize(cap);
   Undecided u{&scratch[0], &scratch[cap], &scratch[2 * cap], &scratch[3 * cap], columnScratch.data(), 0};
   float* result = &scratch[4 * cap];
 
-  size_t decided = 0, x = 0;
-  for (; x + lanes <= count; x += lanes)
-    decided += PretestSamples(d, k, x0, y, x, depth, nx, ny, nz, visibility, u, taps);
-  for (; x < count; ++x) decided += PretestSamples(d1, k, x0, y, x, depth, nx, ny, nz, visibility, u, taps);
+  size_t decided = 0;
+  for (int r = 0; r < rows; ++r) {
+    const size_t o = size_t(r) * count;
+    const int32_t base = int32_t(o);
+    size_t x = 0;
+    for (; x + lanes <= count; x += lanes)
+      decided += PretestSamples(d, k, x0, y0 + r, x, base, depth + o, nx + o, ny + o, nz + o, visibility + o, u, taps);
+    for (; x < count; ++x)
+      decided += PretestSamples(d1, k, x0, y0 + r, x, base, depth + o, nx + o, ny + o, nz + o, visibility + o, u, taps);
+  }
 
   size_t j = 0;
   for (; j + lanes <= u.count; j += lanes) FinishSamples(d, k, u, j, result);

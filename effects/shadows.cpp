@@ -23,7 +23,7 @@
 #include "effects/shared/prelude.h"
 
 namespace softmol::effects {
-HWY_EXPORT(ShadowRowImpl);
+HWY_EXPORT(ShadowBlockImpl);
 
 bool ValidShadowOptions(const ShadowOptions& o) {
   const auto in = [](float v, float lo, float hi) { return std::isfinite(v) && v >= lo && v <= hi; };
@@ -94,9 +94,9 @@ void BuildShadowMap(const raster::PrimitiveScene& scene, const raster::Camera& e
 
 namespace detail {
 
-uint32_t ShadowRow(const ShadowConstants& k, int x0, int y, int count, const float* depth, const float* nx,
-                   const float* ny, const float* nz, float* visibility, uint64_t& taps) noexcept {
-  return HWY_DYNAMIC_DISPATCH(ShadowRowImpl)(k, x0, y, count, depth, nx, ny, nz, visibility, taps);
+uint32_t ShadowBlock(const ShadowConstants& k, int x0, int y0, int width, int rows, const float* depth,
+                     const float* nx, const float* ny, const float* nz, float* visibility, uint64_t& taps) noexcept {
+  return HWY_DYNAMIC_DISPATCH(ShadowBlockImpl)(k, x0, y0, width, rows, depth, nx, ny, nz, visibility, taps);
 }
 
 ShadowConstants MakeShadowConstants(const ShadowMap& map, const raster::Camera& eyeCamera,
@@ -159,7 +159,8 @@ inline float Tap(const ShadowConstants& k, float lx, float ly, float receiver, i
 
 }  // namespace
 
-uint32_t ShadowRowScalar(const ShadowConstants& k, int x0, int y, int count, const float* depth,
+// One row of a block (ShadowBlockScalar).
+static uint32_t ShadowRowScalar(const ShadowConstants& k, int x0, int y, int count, const float* depth,
                          const float* nxRow, const float* nyRow, const float* nzRow, float* visibility,
                          uint64_t& taps) noexcept {
   uint32_t decided = 0;
@@ -211,6 +212,17 @@ uint32_t ShadowRowScalar(const ShadowConstants& k, int x0, int y, int count, con
   return decided;
 }
 
+uint32_t ShadowBlockScalar(const ShadowConstants& k, int x0, int y0, int width, int rows, const float* depth,
+                           const float* nx, const float* ny, const float* nz, float* visibility,
+                           uint64_t& taps) noexcept {
+  uint32_t decided = 0;
+  for (int r = 0; r < rows; ++r) {
+    const size_t o = size_t(r) * size_t(width);
+    decided += ShadowRowScalar(k, x0, y0 + r, width, depth + o, nx + o, ny + o, nz + o, visibility + o, taps);
+  }
+  return decided;
+}
+
 }  // namespace detail
 
 namespace {
@@ -237,7 +249,7 @@ ShadowStats Run(const ShadowMap& map, const raster::Camera& camera, const raster
   tbb::parallel_for(tbb::blocked_range<int>(0, g.height, 4), [&](const tbb::blocked_range<int>& r) {
     for (int y = r.begin(); y < r.end(); ++y) {
       const size_t o = g.Index(0, y);
-      decided[size_t(y)] = row(k, 0, y, g.width, g.depth.data() + o, g.normalX.data() + o, g.normalY.data() + o,
+      decided[size_t(y)] = row(k, 0, y, g.width, 1, g.depth.data() + o, g.normalX.data() + o, g.normalY.data() + o,
                                g.normalZ.data() + o, visibility.data() + o, taps[size_t(y)]);
     }
   });
@@ -261,17 +273,15 @@ ShadowTileFilter::ShadowTileFilter(const ShadowMap& map, const raster::Camera& e
 ShadowStats ShadowTileFilter::operator()(const raster::TileSamples& t, float* visibility) const {
   SOFTMOL_CHECK(t.depth && t.normalX && t.normalY && t.normalZ);
   const int width = t.x1 - t.x0;
+  SOFTMOL_CHECK(t.stride == width);  // the block's rows one after the other
   const size_t n = size_t(width) * size_t(t.y1 - t.y0);
   ShadowStats stats;
   if (!valid_) {
     std::fill(visibility, visibility + n, 1.0f);
     return stats;
   }
-  for (int y = t.y0; y < t.y1; ++y) {
-    const size_t o = t.Index(t.x0, y);
-    stats.pretestDecided += detail::ShadowRow(k_, t.x0, y, width, t.depth + o, t.normalX + o, t.normalY + o,
-                                              t.normalZ + o, visibility + o, stats.tapsTaken);
-  }
+  stats.pretestDecided = detail::ShadowBlock(k_, t.x0, t.y0, width, t.y1 - t.y0, t.depth, t.normalX, t.normalY,
+                                             t.normalZ, visibility, stats.tapsTaken);
   for (size_t i = 0; i < n; ++i) stats.covered += Covered(t.depth[i]) ? 1 : 0;
   return stats;
 }
@@ -279,13 +289,13 @@ ShadowStats ShadowTileFilter::operator()(const raster::TileSamples& t, float* vi
 ShadowStats ShadowFactors(const ShadowMap& map, const raster::Camera& eyeCamera,
                           const raster::GBuffer& gbuffer, const ShadowOptions& options,
                           std::span<float> visibility) {
-  return Run(map, eyeCamera, gbuffer, options, visibility, detail::ShadowRow);
+  return Run(map, eyeCamera, gbuffer, options, visibility, detail::ShadowBlock);
 }
 
 ShadowStats ShadowFactorsScalar(const ShadowMap& map, const raster::Camera& eyeCamera,
                                 const raster::GBuffer& gbuffer, const ShadowOptions& options,
                                 std::span<float> visibility) {
-  return Run(map, eyeCamera, gbuffer, options, visibility, detail::ShadowRowScalar);
+  return Run(map, eyeCamera, gbuffer, options, visibility, detail::ShadowBlockScalar);
 }
 
 }  // namespace softmol::effects

@@ -100,20 +100,21 @@ struct ShadowConstants {
 ShadowConstants MakeShadowConstants(const ShadowMap& map, const raster::Camera& eyeCamera,
                                     const ShadowOptions& options, int width);
 
-// `count` samples of row y from column x0 (a whole row, or a tile's part of it; the pointers
-// point at column x0); returns the number of samples the pre-test decided, adds to `taps`.
-// Thread-safe for distinct samples.
-uint32_t ShadowRow(const ShadowConstants& k, int x0, int y, int count, const float* depth, const float* nx,
-                   const float* ny, const float* nz, float* visibility, uint64_t& taps) noexcept;
-uint32_t ShadowRowScalar(const ShadowConstants& k, int x0, int y, int count, const float* depth,
-                         const float* nx, const float* ny, const float* nz, float* visibility,
-                         uint64_t& taps) noexcept;
+// A block of `rows` rows of `width` samples, rows y0, y0 + 1, … from column x0, stored one
+// after the other (a whole frame row, or a tile; the pointers point at its first sample);
+// returns the number of samples the pre-test decided, adds to `taps`. Each sample's value does
+// not depend on the block it is filtered in. Thread-safe for distinct samples.
+uint32_t ShadowBlock(const ShadowConstants& k, int x0, int y0, int width, int rows, const float* depth,
+                     const float* nx, const float* ny, const float* nz, float* visibility, uint64_t& taps) noexcept;
+uint32_t ShadowBlockScalar(const ShadowConstants& k, int x0, int y0, int width, int rows, const float* depth,
+                           const float* nx, const float* ny, const float* nz, float* visibility,
+                           uint64_t& taps) noexcept;
 
 }  // namespace detail
 
 // The tile form, for the fused tile pipeline (effects/frame_renderer.cpp): ShadowFactors'
 // values (and its statistics, summed over tiles) for the samples of one tile of a G-buffer
-// rendered with `eyeCamera`, each tile row one ShadowRow. Safe to call on disjoint tiles in
+// rendered with `eyeCamera`, the tile one ShadowBlock. Safe to call on disjoint tiles in
 // parallel.
 class ShadowTileFilter {
  public:

@@ -4,7 +4,8 @@
 // - the 8-tap pre-test is an approximation with an exact property: a sample whose pre-test taps
 //   disagree gets the full filter's value bit for bit, and a sample whose 64 taps all agree gets
 //   that value; only samples whose 8 taps agree while the other 56 do not may differ;
-// - the SIMD rows equal the scalar twin bit for bit on every target, perspective and ortho;
+// - the SIMD rows equal the scalar twin bit for bit on every target, perspective and ortho, and
+//   so does the tile form (ShadowTileFilter, whole tiles as one block), statistics included;
 // - the same bytes for 1 and many threads; every value finite and in [0,1]; background 1;
 // - options out of range are invalid (the pass holds ValidShadowOptions as an invariant).
 #include <bit>
@@ -21,6 +22,7 @@
 #include "ao/reference_ao.h"
 #include "effects/shadows.h"
 #include "raster/frame.h"
+#include "tests/support/tile_blocks.h"
 
 namespace softmol::effects {
 namespace {
@@ -250,6 +252,31 @@ TEST_P(ShadowTwins, SimdMatchesScalarBitForBit) {
         ASSERT_TRUE(scalar[i] >= 0.0f && scalar[i] <= 1.0f) << i;
       }
     }
+}
+
+TEST_P(ShadowTwins, TilesMatchTheFrameBitForBit) {
+  ShadowOptions o;
+  o.mapSize = 512;
+  o.filterRadius = 0.8f;
+  Rendered r;
+  Render(false, 203, 97, o, r);
+  std::vector<float> frame(size_t(203) * 97);
+  const ShadowStats whole = ShadowFactorsScalar(r.map, r.camera, r.g, o, frame);
+  const ShadowTileFilter filter(r.map, r.camera, o);
+  for (const int side : {32, 13}) {  // 13: each row of a block ends in the one-lane tail
+    ShadowStats sum;
+    const std::vector<float> tiles = test::ThroughTiles(r.g, side, side / 2, [&](const raster::TileSamples& t, float* v) {
+      const ShadowStats s = filter(t, v);
+      sum.covered += s.covered, sum.pretestDecided += s.pretestDecided, sum.tapsTaken += s.tapsTaken;
+    });
+    for (size_t i = 0; i < frame.size(); ++i)
+      ASSERT_EQ(std::bit_cast<uint32_t>(tiles[i]), std::bit_cast<uint32_t>(frame[i])) << "tile " << side << ", sample " << i;
+    EXPECT_EQ(sum.covered, whole.covered);
+    EXPECT_EQ(sum.pretestDecided, whole.pretestDecided);
+    EXPECT_EQ(sum.tapsTaken, whole.tapsTaken);
+  }
+  EXPECT_GT(whole.pretestDecided, 0u);
+  EXPECT_LT(whole.pretestDecided, whole.covered) << "some samples take the whole filter";
 }
 
 }  // namespace
