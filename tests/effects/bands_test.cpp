@@ -110,27 +110,36 @@ TEST(Bands, EveryEffectGivesTheWholeFramesBytes) {
   }
 }
 
-// With the 8-bit pixels made in the tiles (a plan whose shading runs fused), bands and the
-// windows they split into stitch those bytes into the whole frame's.
+// With the 8-bit pixels made in the tiles (a plan whose shading runs fused, also with the AO
+// and shadows fused before it, as a default poster's), bands and the windows they split into
+// stitch those bytes into the whole frame's.
 TEST(Bands, PixelsMadeInTheTilesStitchIntoTheWholeFrames) {
   test::NamedScene s = test::RandomBallsAndSticks(5, 400, 75, 61, false);
   raster::FitNearFar(s.camera, s.scene);
-  for (bool transparent : {false, true}) {
-    RenderOptions o;
-    o.transparent = transparent;
-    o.contourWidth = 0.2f;
-    const std::vector<uint8_t> whole = EncodeSrgb8(RenderFrame(s.scene, s.camera, o), transparent);
-    o.srgb8 = true;
-    for (int side : {raster::kMaxFrameSide, 16}) {
-      std::vector<uint8_t> stitched;
-      RenderBands(s.scene, s.camera, o, 7, [&](const RenderedFrame& band, const FrameBand&) {
-        EXPECT_TRUE(band.rgba.empty()) << "made as bytes";
-        const std::vector<uint8_t> px = EncodeSrgb8(band, transparent);
-        stitched.insert(stitched.end(), px.begin(), px.end());
-      }, nullptr, side);
-      EXPECT_EQ(stitched, whole) << "transparent " << transparent << ", windows of " << side;
+  for (AoMode ao : {AoMode::kNone, AoMode::kBaked, AoMode::kCone})
+    for (bool transparent : {false, true}) {
+      RenderOptions o;
+      o.transparent = transparent;
+      o.contourWidth = 0.2f;
+      o.ao = ao;
+      o.bake.directions = 8;
+      o.shadows = ao != AoMode::kNone;
+      o.shadow.mapSize = 256;
+      const std::vector<uint8_t> whole = EncodeSrgb8(RenderFrame(s.scene, s.camera, o), transparent);
+      o.srgb8 = true;
+      for (int side : {raster::kMaxFrameSide, 16}) {
+        const std::string what = "ao " + std::to_string(int(ao)) + ", transparent " + std::to_string(transparent) +
+                                 ", windows of " + std::to_string(side);
+        std::vector<uint8_t> stitched;
+        RenderBands(s.scene, s.camera, o, 7, [&](const RenderedFrame& band, const FrameBand&) {
+          EXPECT_TRUE(band.rgba.empty()) << what << ": made as bytes";
+          EXPECT_TRUE(band.passes.back().inGBufferTiles) << what << ": shaded in the tiles";
+          const std::vector<uint8_t> px = EncodeSrgb8(band, transparent);
+          stitched.insert(stitched.end(), px.begin(), px.end());
+        }, nullptr, side);
+        EXPECT_EQ(stitched, whole) << what;
+      }
     }
-  }
 }
 
 TEST(Bands, OnlyTheSobelOutlinesNeedABorder) {
