@@ -25,8 +25,9 @@ io::ParamTable<RenderOptions> GBufferParams() {
                                "gbuffer"),
       ChoiceParam<RenderOptions>("tile-pipeline", [](auto& o) -> auto& { return o.fuseTiles; },
                                  std::vector<std::pair<std::string, bool>>{{"fused", true}, {"passes", false}},
-                                 "fused: shade each raster tile while it is in cache where no later pass needs the "
-                                 "whole G-buffer; passes: every pass over the whole frame (same image)",
+                                 "fused: run the per-sample passes (AO lookup, cone AO, shadows, shading) in each raster "
+                                 "tile while it is in cache, where no later pass needs the whole frame; passes: every "
+                                 "pass over the whole frame (same image)",
                                  "gbuffer"),
       SwitchParam<RenderOptions>("contour-depth-aware", [](auto& o) -> auto& { return o.contourDepthAware; },
                                  "Thin contour lines where the depth step behind them is small", "gbuffer"),
