@@ -69,20 +69,40 @@ const float* SrgbDecodeTable() { return GetTables().decode.data(); }
 
 uint8_t LinearToSrgb8(float linear) { return Encode(GetTables(), linear); }
 
+namespace {
+
+// One pixel of premultiplied linear RGBA to 3 sRGB bytes, or to 4 with straight alpha.
+template <bool kAlpha>
+inline void EncodePixel(const Tables& t, float r, float g, float b, float a, uint8_t* out) {
+  if constexpr (!kAlpha) {
+    out[0] = Encode(t, r), out[1] = Encode(t, g), out[2] = Encode(t, b);
+  } else {
+    // PNG stores straight alpha: undo the premultiplication before encoding.
+    const float scale = a > 0.0f ? 1.0f / a : 1.0f;
+    out[0] = Encode(t, r * scale), out[1] = Encode(t, g * scale), out[2] = Encode(t, b * scale);
+    const float alpha = a * 255.0f + 0.5f;
+    out[3] = uint8_t(alpha >= 255.0f ? 255.0f : (alpha > 0.0f ? alpha : 0.0f));
+  }
+}
+
+}  // namespace
+
 void EncodeSrgb8Pixels(const float* rgba, size_t n, bool withAlpha, uint8_t* out) {
   const Tables& t = GetTables();
   if (!withAlpha) {
-    for (size_t i = 0; i < n; ++i, rgba += 4, out += 3)
-      out[0] = Encode(t, rgba[0]), out[1] = Encode(t, rgba[1]), out[2] = Encode(t, rgba[2]);
-    return;
+    for (size_t i = 0; i < n; ++i, rgba += 4, out += 3) EncodePixel<false>(t, rgba[0], rgba[1], rgba[2], rgba[3], out);
+  } else {
+    for (size_t i = 0; i < n; ++i, rgba += 4, out += 4) EncodePixel<true>(t, rgba[0], rgba[1], rgba[2], rgba[3], out);
   }
-  for (size_t i = 0; i < n; ++i, rgba += 4, out += 4) {
-    const float a = rgba[3];
-    // PNG stores straight alpha: undo the premultiplication before encoding.
-    const float scale = a > 0.0f ? 1.0f / a : 1.0f;
-    for (int c = 0; c < 3; ++c) out[c] = Encode(t, rgba[c] * scale);
-    const float alpha = a * 255.0f + 0.5f;
-    out[3] = uint8_t(alpha >= 255.0f ? 255.0f : (alpha > 0.0f ? alpha : 0.0f));
+}
+
+void EncodeSrgb8Planes(const float* r, const float* g, const float* b, const float* a, size_t n, bool withAlpha,
+                       uint8_t* out) {
+  const Tables& t = GetTables();
+  if (!withAlpha) {
+    for (size_t i = 0; i < n; ++i, out += 3) EncodePixel<false>(t, r[i], g[i], b[i], a[i], out);
+  } else {
+    for (size_t i = 0; i < n; ++i, out += 4) EncodePixel<true>(t, r[i], g[i], b[i], a[i], out);
   }
 }
 

@@ -21,6 +21,10 @@ uint8_t LinearToSrgb8(float linear);
 // or with straight alpha RGBA (4 bytes; alpha rounded, colour un-premultiplied first). Each
 // colour channel is exactly LinearToSrgb8.
 void EncodeSrgb8Pixels(const float* rgba, size_t n, bool withAlpha, uint8_t* out);
+// The same from four planes (channel c of pixel i at c[i]): EncodeSrgb8Pixels' bytes for the
+// pixels those planes interleave to, without interleaving them first.
+void EncodeSrgb8Planes(const float* r, const float* g, const float* b, const float* a, size_t n, bool withAlpha,
+                       uint8_t* out);
 
 // The 256-entry decode table itself (SrgbToLinear(k) == SrgbDecodeTable()[k]), for loops
 // that want to look it up without a call per channel.

@@ -251,7 +251,14 @@ void TileShader::operator()(const raster::TileSamples& t, const float* ambientOc
   for (int py = t.y0 / ssaa; py < t.y1 / ssaa; ++py) {
     const size_t row = size_t(height_ - 1 - py);  // G-buffer rows are bottom-up, files top-down
     const size_t first = row * size_t(width_) + size_t(t.x0 / ssaa);
-    ResolvePixels(&shaded[t.Index(t.x0, py * ssaa)], n, size_t(t.stride), pixels, ssaa, resolved);
+    const size_t at = t.Index(t.x0, py * ssaa);
+    if (ssaa == 1 && out_.rgba.empty()) {  // one sample a pixel, bytes only: encode straight from the planes
+      EncodeSrgb8Planes(&shaded[at], &shaded[n + at], &shaded[2 * n + at], &shaded[3 * n + at], pixels,
+                        out_.srgb8Alpha, encoded);
+      std::memcpy(&out_.srgb8[bytesPerPixel * first], encoded, bytesPerPixel * pixels);
+      continue;
+    }
+    ResolvePixels(&shaded[at], n, size_t(t.stride), pixels, ssaa, resolved);
     if (!out_.rgba.empty()) StreamCopy(&out_.rgba[4 * first], resolved, 4 * pixels * sizeof(float));
     if (!out_.srgb8.empty()) {
       EncodeSrgb8Pixels(resolved, pixels, out_.srgb8Alpha, encoded);

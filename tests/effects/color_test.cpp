@@ -90,6 +90,28 @@ TEST(Color, PixelEncoderEqualsTheOneValueEncoder) {
   }
 }
 
+// The planar encoder gives the interleaved one's bytes (-0 and NaN included: the interleave
+// turns -0 into +0, which encodes the same).
+TEST(Color, PlaneEncoderEqualsThePixelEncoder) {
+  std::vector<float> planes[4], rgba;
+  const float special[] = {-0.0f, std::numeric_limits<float>::quiet_NaN(), -1.0f, 2.0f, 1e-40f,
+                           std::numeric_limits<float>::infinity()};
+  for (int i = 0; i < 3000; ++i)
+    for (int c = 0; c < 4; ++c) {
+      const float v = i % 97 == c ? special[(i / 97) % 6] : float((i * (c + 5) * 31) % 1013) / 1000.0f;
+      planes[c].push_back(v);
+      rgba.push_back(0.0f + v);
+    }
+  for (bool withAlpha : {false, true}) {
+    const size_t n = planes[0].size(), bytes = withAlpha ? 4 : 3;
+    std::vector<uint8_t> fromPlanes(bytes * n), fromPixels(bytes * n);
+    EncodeSrgb8Planes(planes[0].data(), planes[1].data(), planes[2].data(), planes[3].data(), n, withAlpha,
+                      fromPlanes.data());
+    EncodeSrgb8Pixels(rgba.data(), n, withAlpha, fromPixels.data());
+    EXPECT_EQ(fromPlanes, fromPixels) << "alpha " << withAlpha;
+  }
+}
+
 TEST(Color, OutOfRangeAndNaNClamp) {
   EXPECT_EQ(LinearToSrgb8(-1.0f), 0);
   EXPECT_EQ(LinearToSrgb8(std::numeric_limits<float>::quiet_NaN()), 0);
