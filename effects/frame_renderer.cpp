@@ -37,7 +37,8 @@ Fusion PlanFusion(const std::vector<PlannedPass>& plan, const RenderOptions& o) 
   if (o.tileSize % o.ssaa != 0 || size_t(o.tileSize) > kMaxTileSide) return {};  // tiles must hold whole pixels
   Fusion f;
   uint64_t available = kBufGBuffer | kBufScene;
-  while (plan[f.gbuffer].id != PassId::kGBuffer) available |= plan[f.gbuffer++].writes;  // the maps
+  // Every plan has the G-buffer pass (PlanPasses); before it come the scene-wide maps.
+  while (plan[f.gbuffer].id != PassId::kGBuffer) available |= plan[f.gbuffer++].writes;
   f.first = f.end = f.gbuffer + 1;
   for (size_t i = f.first; i < plan.size(); ++i) {
     const PassUnit& unit = Pass(plan[i].id);

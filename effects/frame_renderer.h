@@ -117,9 +117,10 @@ struct RenderedFrame {
 struct FrameResources {
   raster::FrameWorkspace workspace;
   // Written only where a pass after the G-buffer's own tiles reads it (the fused tile pipeline
-  // shades tiles without it), or when `keepGBuffer` asks for it.
+  // shades tiles without it), or when `keepGBuffer` asks for it; so are `ao` and `shadow` when
+  // their passes ran fused.
   raster::GBuffer gbuffer;
-  bool keepGBuffer = false;  // the caller reads `gbuffer` after the frame
+  bool keepGBuffer = false;  // the caller reads `gbuffer`, `ao` and `shadow` after the frame
   ao::OccupancyPyramid pyramid;  // rebuilt only when the scene moved
   ao::AoAtlas atlas;             // baked AO, re-baked only when the scene or bake options change
   uint64_t atlasKey = 0;
