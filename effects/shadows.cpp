@@ -161,8 +161,8 @@ inline float Tap(const ShadowConstants& k, float lx, float ly, float receiver, i
 
 // One row of a block (ShadowBlockScalar).
 static uint32_t ShadowRowScalar(const ShadowConstants& k, int x0, int y, int count, const float* depth,
-                         const float* nxRow, const float* nyRow, const float* nzRow, float* visibility,
-                         uint64_t& taps) noexcept {
+                                const float* nxRow, const float* nyRow, const float* nzRow, float* visibility,
+                                uint64_t& taps) noexcept {
   uint32_t decided = 0;
   for (int x = 0; x < count; ++x) {
     const float dep = depth[x];
