@@ -37,7 +37,7 @@ void ConeTraceRow(const ConeConstants& k, int x0, int y, int count, const float*
 // and each axis goes through its cell's median radius. The half-angle α gives each cone the
 // solid angle 2π/N of the hemisphere: cos α = 1 − 1/N.
 ConeConstants MakeConeConstants(const OccupancyPyramid& pyramid, const raster::Camera& camera,
-                                const ConeAoOptions& options, int width) {
+                                const ConeAoOptions& options) {
   SOFTMOL_CHECK(options.cones == 3 || options.cones == 5 || options.cones == 9);
   SOFTMOL_CHECK(options.samplesPerCone >= 1 && options.samplesPerCone <= kMaxSamples);
   SOFTMOL_CHECK(pyramid.built && !pyramid.levels.empty() &&
@@ -103,7 +103,6 @@ ConeConstants MakeConeConstants(const OccupancyPyramid& pyramid, const raster::C
   k.pixelScale = float(raster::PixelScale(camera));
   k.halfWidth = float(raster::HalfWidth(camera));
   k.halfHeight = float(raster::HalfHeight(camera));
-  k.width = width;
   return k;
 }
 
@@ -179,7 +178,7 @@ void Run(const OccupancyPyramid& pyramid, const raster::Camera& camera,
          const raster::GBuffer& g, const ConeAoOptions& options, std::span<float> ao, RowFn row) {
   SOFTMOL_CHECK(ao.size() == size_t(g.width) * size_t(g.height));
   SOFTMOL_CHECK(g.normalX.size() == ao.size());
-  const detail::ConeConstants k = detail::MakeConeConstants(pyramid, camera, options, g.width);
+  const detail::ConeConstants k = detail::MakeConeConstants(pyramid, camera, options);
   tbb::parallel_for(tbb::blocked_range<int>(0, g.height, 4), [&](const tbb::blocked_range<int>& r) {
     for (int y = r.begin(); y < r.end(); ++y) {
       const size_t o = g.Index(0, y);
@@ -205,7 +204,7 @@ void ConeTraceAoScalar(const OccupancyPyramid& pyramid, const raster::Camera& ca
 
 ConeTileTracer::ConeTileTracer(const OccupancyPyramid& pyramid, const raster::Camera& camera,
                                const ConeAoOptions& options)
-    : k_(detail::MakeConeConstants(pyramid, camera, options, camera.width)) {}
+    : k_(detail::MakeConeConstants(pyramid, camera, options)) {}
 
 void ConeTileTracer::operator()(const raster::TileSamples& t, float* ao) const {
   SOFTMOL_CHECK(t.depth && t.normalX && t.normalY && t.normalZ);

@@ -46,7 +46,6 @@ struct ConeConstants {
   float m[9], offset[3], rot[9];
   float halfWidth, halfHeight, pixelScale;
   bool ortho;
-  int width;
   int cones, samples;
   float coneCount;                    // float(cones)
   float dir[kMaxCones][3];            // cone axes in the tangent frame (b1, b2, n)
@@ -58,7 +57,7 @@ struct ConeConstants {
   float resF[kMaxLevels], scale[kMaxLevels];  // float(res), 2^−level
 };
 ConeConstants MakeConeConstants(const OccupancyPyramid& pyramid, const raster::Camera& camera,
-                                const ConeAoOptions& options, int width);
+                                const ConeAoOptions& options);
 
 // `count` pixels of row y from column x0 (a whole row, or a tile's part of it); the pointers
 // point at column x0. Thread-safe for distinct pixels.

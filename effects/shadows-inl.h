@@ -164,8 +164,8 @@ HWY_INLINE void FinishSamples(D d, const detail::ShadowConstants& k, const Undec
 // for all their undecided samples packed together, so that short runs (a tile's rows) still
 // fill whole vectors.
 inline uint32_t ShadowBlockImpl(const detail::ShadowConstants& k, int x0, int y0, int samples, int rows,
-                              const float* depth, const float* nx, const float* ny, const float* nz,
-                              float* visibility, uint64_t& taps) {
+                                const float* depth, const float* nx, const float* ny, const float* nz,
+                                float* visibility, uint64_t& taps) {
   const hn::ScalableTag<float> d;
   const hn::CappedTag<float, 1> d1;
   const size_t lanes = hn::Lanes(d), count = size_t(samples);

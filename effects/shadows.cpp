@@ -100,7 +100,7 @@ uint32_t ShadowBlock(const ShadowConstants& k, int x0, int y0, int width, int ro
 }
 
 ShadowConstants MakeShadowConstants(const ShadowMap& map, const raster::Camera& eyeCamera,
-                                    const ShadowOptions& options, int width) {
+                                    const ShadowOptions& options) {
   SOFTMOL_CHECK(map.valid && map.map.width == map.map.height && map.map.width > 0);
   ShadowConstants k{};
   // Eye space → world → light eye space, in double, then rounded once.
@@ -122,7 +122,6 @@ ShadowConstants MakeShadowConstants(const ShadowMap& map, const raster::Camera& 
   k.pixelScale = float(raster::PixelScale(eyeCamera));
   k.halfWidth = float(raster::HalfWidth(eyeCamera));
   k.halfHeight = float(raster::HalfHeight(eyeCamera));
-  k.width = width;
   k.map = map.map.depth.data();
   k.mapSize = map.map.width;
   k.mapLast = float(map.map.width - 1);
@@ -243,7 +242,7 @@ ShadowStats Run(const ShadowMap& map, const raster::Camera& camera, const raster
     return stats;
   }
   SOFTMOL_CHECK(g.depth.size() == n && g.normalX.size() == n);
-  const detail::ShadowConstants k = detail::MakeShadowConstants(map, camera, options, g.width);
+  const detail::ShadowConstants k = detail::MakeShadowConstants(map, camera, options);
   std::vector<uint32_t> decided(size_t(g.height), 0);
   std::vector<uint64_t> taps(size_t(g.height), 0);
   tbb::parallel_for(tbb::blocked_range<int>(0, g.height, 4), [&](const tbb::blocked_range<int>& r) {
@@ -267,7 +266,7 @@ ShadowTileFilter::ShadowTileFilter(const ShadowMap& map, const raster::Camera& e
                                    const ShadowOptions& options)
     : valid_(map.valid) {
   SOFTMOL_CHECK(ValidShadowOptions(options));
-  if (valid_) k_ = detail::MakeShadowConstants(map, eyeCamera, options, eyeCamera.width);
+  if (valid_) k_ = detail::MakeShadowConstants(map, eyeCamera, options);
 }
 
 ShadowStats ShadowTileFilter::operator()(const raster::TileSamples& t, float* visibility) const {

@@ -88,7 +88,6 @@ struct ShadowConstants {
   float lightX, lightY, lightZ;  // unit, eye space, towards the light
   float halfWidth, halfHeight, pixelScale;
   bool ortho;
-  int width;  // G-buffer row length
   const float* map;
   int mapSize;
   float mapLast;  // float(mapSize − 1)
@@ -98,7 +97,7 @@ struct ShadowConstants {
   float tapX[kMaxPcfSamples], tapY[kMaxPcfSamples];  // texels
 };
 ShadowConstants MakeShadowConstants(const ShadowMap& map, const raster::Camera& eyeCamera,
-                                    const ShadowOptions& options, int width);
+                                    const ShadowOptions& options);
 
 // A block of `rows` rows of `width` samples, rows y0, y0 + 1, … from column x0, stored one
 // after the other (a whole frame row, or a tile; the pointers point at its first sample);

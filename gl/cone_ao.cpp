@@ -41,7 +41,7 @@ void ConeAoPass::Run(const GBufferTargets& g, const raster::Camera& camera, cons
   SOFTMOL_CHECK(camera.width == g.width && camera.height == g.height);
   SOFTMOL_CHECK(levelStart.size() == pyramid.levels.size());
   target.Resize(g.width, g.height);
-  const ao::detail::ConeConstants k = ao::detail::MakeConeConstants(pyramid, camera, options, g.width);
+  const ao::detail::ConeConstants k = ao::detail::MakeConeConstants(pyramid, camera, options);
   const GLuint p = program;
   const auto loc = [p](const char* name) { return glGetUniformLocation(p, name); };
   SetGridRayUniforms(p, k.m, k.offset, k.halfWidth, k.halfHeight, k.pixelScale, k.ortho);

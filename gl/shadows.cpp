@@ -42,7 +42,7 @@ void ShadowPass::Run(const GBufferTargets& g, const raster::Camera& camera, cons
     return;
   }
   target.Resize(g.width, g.height);
-  const effects::detail::ShadowConstants k = effects::detail::MakeShadowConstants(light, camera, options, g.width);
+  const effects::detail::ShadowConstants k = effects::detail::MakeShadowConstants(light, camera, options);
   const GLuint p = program;
   const auto number = [p](const char* name, float v) { glProgramUniform1f(p, glGetUniformLocation(p, name), v); };
   const auto integer = [p](const char* name, int v) { glProgramUniform1i(p, glGetUniformLocation(p, name), v); };
