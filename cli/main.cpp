@@ -13,6 +13,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/commands.h"
+#include "cli/heap_policy.h"
 #include "io/error.h"
 #include "raster/simd_target.h"
 
@@ -71,6 +72,7 @@ int Run(CLI::App& app, int argc, char** argv, cli::InfoArgs& info, cli::RenderCo
 }  // namespace
 
 int main(int argc, char** argv) {
+  cli::KeepFreedMemoryInTheHeap();
   try {
     CLI::App app{"softmol — renders molecules on the CPU (quadric impostors, AO, edge cueing)"};
     app.require_subcommand(1);
