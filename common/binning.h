@@ -73,11 +73,12 @@ inline size_t PrefixBins(size_t chunks, size_t buckets, Bins& bins) {
 // Bins items 0 … items−1 into `buckets` buckets. visit(i, f) calls f(bucket) once for every
 // bucket item i goes to (any number of them, each < buckets; it must name the same buckets
 // both times it is called); payload(i) is what is stored, evaluated once per item (also for an
-// item in no bucket). `out` is resized to the total and filled; bins.start gets the offsets.
-// visit and payload run concurrently on different items.
-template <class T, class Visit, class Payload>
+// item in no bucket). `out` (a std::vector, or an UninitVector that leaves the elements
+// unset until this writes them) is resized to the total and filled; bins.start gets the
+// offsets. visit and payload run concurrently on different items.
+template <class Out, class Visit, class Payload>
 void BinItems(size_t items, size_t buckets, const Visit& visit, const Payload& payload,
-              Bins& bins, std::vector<T>& out) {
+              Bins& bins, Out& out) {
   const size_t chunks = detail::BinChunks(items, buckets);
   bins.cursor.resize(chunks * buckets);
   tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
@@ -92,7 +93,7 @@ void BinItems(size_t items, size_t buckets, const Visit& visit, const Payload& p
     detail::ForChunkItems(c, chunks, items, [&](size_t i) {
       // One copy per item, in a local: re-reading the source after each store (which the
       // compiler must assume may alias it) made the tile binning ~10% slower.
-      const T value = payload(i);
+      const typename Out::value_type value = payload(i);
       visit(i, [&](size_t b) { out[at[b]++] = value; });
     });
   });

@@ -106,8 +106,8 @@ size_t TileKernelPass::Prepare(const raster::PrimitiveScene& scene, const raster
   SetupPrimitives(scene, view, setup, (options.channels & raster::kSurfaceCoord) != 0);
   // The CPU's draw order (raster/detail/setup.h FrontToBackOrder): exact depth ties between
   // primitives are broken by it on both backends (tests/gl exact_ties checks it).
-  std::vector<BinEntry> sorted;
-  std::vector<uint32_t> buckets;
+  UninitVector<BinEntry> sorted;
+  UninitVector<uint32_t> buckets;
   Bins bins;
   FrontToBackOrder(setup, fc, bins, buckets, sorted);
   order.resize(sorted.size());

@@ -33,9 +33,11 @@ struct TileCpuTime {
 struct FrameWorkspace::Impl {
   detail::SetupOutput setup;
   Bins depthBins, tileBins;               // offsets (tileBins.start: each tile's list) + scratch
-  std::vector<uint32_t> depthBucket;      // scratch of FrontToBackOrder
-  std::vector<detail::BinEntry> sorted;   // visible primitives, front to back
-  std::vector<detail::BinEntry> entries;  // tile lists, concatenated
+  // Uninitialised on resize: the binning writes every element, in parallel (a vector's serial
+  // zeroing was a first frame's page faults, and memory traffic in every frame).
+  UninitVector<uint32_t> depthBucket;      // scratch of FrontToBackOrder
+  UninitVector<detail::BinEntry> sorted;   // visible primitives, front to back
+  UninitVector<detail::BinEntry> entries;  // tile lists, concatenated
   std::vector<detail::TileCounters> tileCounters;
   std::vector<TileCpuTime> tileTimes;      // with a TileHook only
 };
@@ -161,7 +163,7 @@ bool FiniteNonNegative(float v) { return std::isfinite(v) && v >= 0.0f; }
 constexpr size_t kRepeatCheckFrom = 16384;
 
 size_t DropRepeatedSpheres(const detail::SetupOutput& su, const Bins& bins,
-                           std::vector<detail::BinEntry>& order) {
+                           UninitVector<detail::BinEntry>& order) {
   using namespace detail;
   std::vector<uint32_t> crowded;
   for (uint32_t b = 0; b < kDepthBuckets; ++b)
@@ -192,7 +194,7 @@ size_t DropRepeatedSpheres(const detail::SetupOutput& su, const Bins& bins,
 namespace detail {
 
 size_t FrontToBackOrder(const SetupOutput& su, const FrameConstants& fc, Bins& bins,
-                        std::vector<uint32_t>& buckets, std::vector<BinEntry>& order) {
+                        UninitVector<uint32_t>& buckets, UninitVector<BinEntry>& order) {
   const size_t nS = su.sphereKey.size(), nC = su.cylinderKey.size();
   const size_t nAll = nS + nC + su.ellipsoidKey.size();
   const DepthBucketer bucket{fc.nearPlane, float(kDepthBuckets) / (fc.farPlane - fc.nearPlane)};

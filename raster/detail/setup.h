@@ -85,6 +85,6 @@ uint64_t SetupPrimitives(const PrimitiveScene& scene, const ViewSetup& view, Set
 // never show: raster/frame.cpp says why); returns how many were.
 inline constexpr uint32_t kDepthBuckets = 4096;
 size_t FrontToBackOrder(const SetupOutput& setup, const FrameConstants& fc, Bins& bins,
-                      std::vector<uint32_t>& buckets, std::vector<BinEntry>& order);
+                      UninitVector<uint32_t>& buckets, UninitVector<BinEntry>& order);
 
 }  // namespace softmol::raster::detail
