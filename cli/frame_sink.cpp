@@ -147,6 +147,11 @@ FrameSink::~FrameSink() {
   if (writer_.joinable()) writer_.join();
 }
 
+void FrameSink::PrepareFrameBuffers(int width, int height, const effects::RenderOptions& options,
+                                    effects::FrameResources& resources) {
+  if (!gl_) effects::PrepareFrameBuffers(width, height, options, frame_, resources);
+}
+
 void FrameSink::Render(const raster::PrimitiveScene& scene, const raster::Camera& camera,
                        const effects::RenderOptions& options, effects::FrameResources& resources) {
   cursorMs_ = std::max(cursorMs_, MsSince(start_));

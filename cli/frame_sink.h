@@ -31,6 +31,11 @@ class FrameSink {
   FrameSink(const FrameSink&) = delete;
   FrameSink& operator=(const FrameSink&) = delete;
 
+  // Sizes and first-touches the buffers a width × height frame with `options` will write
+  // (effects::PrepareFrameBuffers), to run beside the reading of the molecule; nothing for the
+  // GL mirror, whose buffers are the driver's.
+  void PrepareFrameBuffers(int width, int height, const effects::RenderOptions& options,
+                           effects::FrameResources& resources);
   // Renders into frame(). `resources` keeps one structure's work (the AO bake, the pyramid)
   // from frame to frame on the CPU backend.
   void Render(const raster::PrimitiveScene& scene, const raster::Camera& camera, const effects::RenderOptions& options,

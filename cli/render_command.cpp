@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include <tbb/global_control.h>
+#include <tbb/task_group.h>
 
 #include <CLI/CLI.hpp>
 
@@ -420,6 +421,17 @@ void CheckCombinations(const RenderArgs& a, const RunPlan& p) {
   CheckFrameSize(a, p);
 }
 
+// What a frame of this run renders with, as far as it is known before a molecule is read: the
+// passes the plan will hold (the automatic AO becomes baked or cone, the same passes and
+// buffers; a highlight plans its halo passes) and the 8-bit output of a PNG.
+effects::RenderOptions ExpectedFrameOptions(const RenderArgs& a, const RunPlan& p) {
+  effects::RenderOptions o = p.options;
+  o.srgb8 = p.kind == OutputKind::kPng;
+  if (!a.highlight.empty()) o.highlight.spheres = {1};
+  if (o.ao == effects::AoMode::kAuto) o.ao = effects::AoMode::kCone;
+  return o;
+}
+
 }  // namespace
 
 RunPlan PlanRun(const RenderArgs& a) {
@@ -430,12 +442,7 @@ RunPlan PlanRun(const RenderArgs& a) {
   p.size = ParseSize(a.size, "--size");
   p.options = a.options;  // the automatic AO, the atlas and the highlight follow per input
 #if SOFTMOL_HAVE_GL
-  if (a.backend == "gl") {
-    effects::RenderOptions planned = p.options;
-    if (!a.highlight.empty()) planned.highlight.spheres = {1};  // the halo passes will be planned
-    if (planned.ao == effects::AoMode::kAuto) planned.ao = effects::AoMode::kCone;  // baked or cone: both mirrored
-    RequireMirrored(planned);
-  }
+  if (a.backend == "gl") RequireMirrored(ExpectedFrameOptions(a, p));
 #endif
   if (!a.turntable.empty()) p.turntable = ParseTurntable(a.turntable, {"--turntable"});
   if (!a.shard.empty()) p.shard = ParseShard(a.shard, {"--shard"});
@@ -559,14 +566,20 @@ void PrintSummary(const RenderArgs& a, const RunPlan& plan, const std::string& i
 void RenderInput(const RenderArgs& a, const RunPlan& plan, const std::string& input, size_t index, size_t firstJob,
                  FrameSink& sink) {
   const Clock::time_point start = Clock::now();
+  effects::FrameResources resources;  // one structure's bake and pyramid, kept across its frames
+  // The first frame's buffers are first-touched on the thread the reading leaves idle; a
+  // banded poster's are a band's, touched by its own first band.
+  tbb::task_group touch;
+  if (plan.bandRows == 0)
+    touch.run([&] { sink.PrepareFrameBuffers(plan.size.width, plan.size.height, ExpectedFrameOptions(a, plan), resources); });
   InputScene s = PrepareInput(a, plan, LoadMolecule(input, a.assembly, a.trajectory, scene::NeedsBonds(a.layers)),
                               input, !a.trajectory.empty(), sink);
+  touch.wait();
   std::unique_ptr<io::TrajectoryReader> trajectory;
   const std::vector<size_t> frames = InputFrames(a, plan, s, trajectory);
   if (trajectory) CheckOutputPatterns(a.output, a.molecules, frames.size() > 1);
   const std::string pattern = InputOutputPattern(a.output, input, index, frames.size() > 1);
   const bool progress = !a.quiet && frames.size() > 1 && isatty(STDERR_FILENO);
-  effects::FrameResources resources;  // one structure's bake and pyramid, kept across its frames
   size_t taken = 0;
   for (size_t k = 0; k < frames.size(); ++k) {
     if (!plan.shard.Takes(firstJob + k)) continue;

@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <atomic>
 #include <cstring>
+#include <span>
 #include <utility>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include "common/check.h"
+#include "common/first_touch.h"
 #include "common/timer.h"
 #include "effects/color.h"
 #include "effects/pass_list.h"
@@ -186,6 +188,25 @@ RenderedFrame RenderFrame(const raster::PrimitiveScene& scene, const raster::Cam
   RenderedFrame frame;
   RenderFrame(scene, camera, options, frame, resources);
   return frame;
+}
+
+void PrepareFrameBuffers(int width, int height, const RenderOptions& o, RenderedFrame& f, FrameResources& res) {
+  SOFTMOL_CHECK(o.ssaa >= 1 && o.ssaa <= 4);
+  const std::vector<PlannedPass> plan = PlanPasses(o);
+  const Fusion fusion = PlanFusion(plan, o);
+  // As RunFusedGBuffer decides; unfused, the G-buffer pass always writes the frame.
+  if (!fusion.Fused() || res.keepGBuffer || LaterPassesRead(plan, fusion.end, kBufGBuffer))
+    res.gbuffer.Resize(width * o.ssaa, height * o.ssaa, GBufferFrameOptions(o, plan).channels, /*clear=*/true);
+  if (!o.color) return;
+  // Sized, touched and emptied again: the frame's resize reuses the storage (UninitVector).
+  auto touch = [](auto& plane, size_t n) {
+    plane.resize(n);
+    FirstTouch(std::span(plane));
+    plane.clear();
+  };
+  const size_t pixels = size_t(width) * size_t(height);
+  if (o.srgb8 && fusion.Fused() && OnlyShadingWritesColor(plan)) touch(f.srgb8, (o.transparent ? 4 : 3) * pixels);
+  else touch(f.rgba, 4 * pixels);
 }
 
 void RenderFrame(const raster::PrimitiveScene& scene, const raster::Camera& camera,

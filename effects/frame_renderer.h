@@ -165,6 +165,15 @@ ShadeInputs MakeShadeInputs(const RenderOptions& options, const raster::Primitiv
 // The G-buffer channels the options need (what "only what the scene calls for" means here).
 uint32_t RequiredChannels(const RenderOptions& options);
 
+// Sizes and first-touches, pages in parallel, the buffers a width × height frame with `options`
+// will write: its output pixels (the 8-bit ones where the tiles make them, else the linear
+// floats) and the full-frame G-buffer where it is written. A process's first frame then does
+// not pay their page faults (common/first_touch.h); the CLI runs this beside the reading of the
+// molecule, on the thread the reading leaves idle. Optional: RenderFrame sizes whatever this
+// did not, and a frame rendered after it is the same bytes.
+void PrepareFrameBuffers(int width, int height, const RenderOptions& options, RenderedFrame& frame,
+                         FrameResources& resources);
+
 // Renders `scene` seen by `camera` (camera.width/height are the output size) into `frame`,
 // reusing its buffers (a frame loop passes the same one every time).
 void RenderFrame(const raster::PrimitiveScene& scene, const raster::Camera& camera,

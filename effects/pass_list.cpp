@@ -33,6 +33,12 @@ std::vector<PlannedPass> PlanPasses(const RenderOptions& o) {
   return plan;
 }
 
+bool OnlyShadingWritesColor(const std::vector<PlannedPass>& plan) {
+  for (const PlannedPass& p : plan)
+    if (p.id != PassId::kShading && (p.writes & kBufColor) != 0) return false;
+  return true;
+}
+
 uint32_t GBufferChannels(const std::vector<PlannedPass>& plan) {
   uint32_t ch = raster::kDepth;
   for (const PlannedPass& p : plan) {

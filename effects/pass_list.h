@@ -127,6 +127,10 @@ struct PlannedPass {
 // The passes `options` call for, in run order, each with the buffers it reads and writes.
 std::vector<PlannedPass> PlanPasses(const RenderOptions& options);
 
+// No pass but the shading writes the colour (none composites over it afterwards, as the object
+// halos do): the tiles that shade may then make the 8-bit pixels themselves.
+bool OnlyShadingWritesColor(const std::vector<PlannedPass>& plan);
+
 // The raster::GBufferChannel bits the G-buffer pass of a plan must write.
 uint32_t GBufferChannels(const std::vector<PlannedPass>& plan);
 // The rasterizer's options for the G-buffer pass of `plan` (both backends draw with them).

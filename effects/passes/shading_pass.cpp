@@ -24,9 +24,7 @@ void RunShading(FrameContext& c) {
 TileStage PrepareShadingTiles(FrameContext& c) {
   const RenderOptions& o = c.options;
   const ShadeInputs in = MakeShadeInputs(o, c.scene, c.camera);
-  bool bytesOnly = o.srgb8;
-  for (const PlannedPass& p : c.plan)
-    if (p.id != PassId::kShading && (p.writes & kBufColor) != 0) bytesOnly = false;  // the object halos
+  const bool bytesOnly = o.srgb8 && OnlyShadingWritesColor(c.plan);
   RenderedFrame& f = c.frame;
   const size_t pixels = size_t(f.width) * size_t(f.height);
   TileColorOutput out;

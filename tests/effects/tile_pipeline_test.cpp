@@ -243,6 +243,49 @@ TEST(TilePipeline, TilesMakeThe8BitPixelsAPngTakes) {
     }
 }
 
+// PrepareFrameBuffers sizes the very buffers the frame then writes (their storage is the one it
+// touched, not a new allocation) and changes no byte: the 8-bit pixels of a fused PNG frame,
+// the floats where a pass composites after the shading (the object halos) or where nothing is
+// fused, and the full-frame G-buffer only where it is written.
+TEST(TilePipeline, PreparedBuffersAreTheOnesTheFrameWrites) {
+  const test::NamedScene s = Scene();
+  struct Case {
+    std::string name;
+    void (*apply)(RenderOptions&);
+    bool bytes, gbuffer;  // what the frame writes: 8-bit pixels (else floats), the whole G-buffer
+  };
+  const Case cases[] = {
+      {"fused png", [](RenderOptions& o) { o.srgb8 = true; }, true, false},
+      {"fused png, ssaa 2, transparent", [](RenderOptions& o) { o.srgb8 = true, o.ssaa = 2, o.transparent = true; }, true,
+       false},
+      {"fused floats", [](RenderOptions&) {}, false, false},
+      {"halos over the shading", [](RenderOptions& o) { o.srgb8 = true, o.highlight.spheres = {0, 1, 2}; }, false, true},
+      {"pass by pass", [](RenderOptions& o) { o.srgb8 = true, o.fuseTiles = false; }, false, true},
+      {"outlines", [](RenderOptions& o) { o.outlines = true; }, false, true},
+  };
+  for (const Case& c : cases) {
+    RenderOptions o;
+    c.apply(o);
+    RenderedFrame plain;
+    RenderFrame(s.scene, s.camera, o, plain);
+
+    RenderedFrame f;
+    FrameResources res;
+    PrepareFrameBuffers(s.camera.width, s.camera.height, o, f, res);
+    const void* pixels = c.bytes ? static_cast<const void*>(f.srgb8.data()) : f.rgba.data();
+    const float* depth = res.gbuffer.depth.data();
+    EXPECT_NE(pixels, nullptr) << c.name;
+    EXPECT_EQ(depth != nullptr, c.gbuffer) << c.name;
+    RenderFrame(s.scene, s.camera, o, f, &res);
+    EXPECT_EQ(c.bytes ? static_cast<const void*>(f.srgb8.data()) : f.rgba.data(), pixels) << c.name;
+    if (c.gbuffer) EXPECT_EQ(res.gbuffer.depth.data(), depth) << c.name;
+    EXPECT_TRUE(SameFloats(f.rgba, plain.rgba)) << c.name;
+    EXPECT_EQ(std::vector<uint8_t>(f.srgb8.begin(), f.srgb8.end()),
+              std::vector<uint8_t>(plain.srgb8.begin(), plain.srgb8.end()))
+        << c.name;
+  }
+}
+
 TEST(TilePipeline, TheProfileSplitsTheGBufferPassTime) {
   const test::NamedScene s = Scene();
   RenderOptions plain;
