@@ -16,6 +16,8 @@
 // heap alone.
 #include "cli/heap_policy.h"
 
+#include <cstdlib>  // defines __GLIBC__ where the C library is glibc (tested before it: an empty function)
+
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
