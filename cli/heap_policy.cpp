@@ -6,13 +6,13 @@
 // threshold (128 KB, rising to 32 MB) with a fresh mapping and unmaps it on free, and trims the
 // top of the heap back to the kernel, so each phase of a render (reading, bonds, the
 // representation, the frame's setup arrays) faulted in memory the phase before had just given
-// back: the 1.03 M-atom assembly's first frame took 750 ms against 130 ms warm, its setup
-// alone 390 ms against 27. With every block from the heap and nothing trimmed, a phase reuses
-// the pages of the one before: that first frame takes 143 ms, the whole process 4.2 → 3.0 s,
-// for 4% more peak memory (602 → 628 MB).
+// back. With every block from the heap and nothing trimmed, a phase reuses the pages of the one
+// before: the 1.03 M-atom assembly as balls, first frame 5.9x -> 1.2x a warm one, its whole
+// process 3.05 -> 2.26 s, for 6% more peak memory (with the huge pages of
+// common/uninit_vector.h).
 //
-// What it costs: the process never shrinks below its peak until it exits, which `softmol`
-// (one render, then exit) does not notice; a library host would, so the library leaves the
+// What it costs: the process never shrinks below its peak until it exits, which a `softmol` run
+// (it renders, then exits) does not notice; a library host would, so the library leaves the
 // heap alone.
 #include "cli/heap_policy.h"
 

@@ -11,7 +11,7 @@
 //   - Huge pages for large blocks, where the kernel offers them (transparent huge pages in
 //     "madvise" mode, Debian's default): one fault maps 2 MB instead of 4 KB. A fault costs
 //     6–14 µs on the 2-core machines (docs/PERFORMANCE.md, "Fresh pages"): the 1.03 M-atom
-//     assembly's first setup took 140 ms with 4 KB pages, 45 ms with huge ones.
+//     assembly's first frame took 256 ms with 4 KB pages, 175 ms with huge ones (medians).
 #pragma once
 
 #include <cstddef>
