@@ -33,6 +33,8 @@ SKIP = 77
 # (label, molecule, assembly, size, softmol flags, Tachyon AO samples)
 CASES = [
     ("1tii 1024×768, shadows", "data/1tii.pdb", "", "1024x768", ["--shadows"], 0),
+    ("1tii 1024×768, shadows, softmol without its default AO (like for like)", "data/1tii.pdb", "", "1024x768",
+     ["--shadows", "--ao", "none"], 0),
     ("1tii 1920×1080, shadows + cone AO", "data/1tii.pdb", "", "1920x1080", ["--shadows", "--ao", "cone"], 16),
     ("1tii 1920×1080, shadows + baked AO", "data/1tii.pdb", "", "1920x1080", ["--shadows", "--ao", "baked"], 16),
     ("3J6R assembly 1 (1.03 M atoms) 1920×1080, shadows + cone AO", "data/3J6R.pdb", "1", "1920x1080",
