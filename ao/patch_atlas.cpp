@@ -30,6 +30,7 @@ HWY_AFTER_NAMESPACE();
 #include <array>
 #include <cmath>
 #include <map>
+#include <span>
 #include <stdexcept>
 #include <string>
 
@@ -37,6 +38,7 @@ HWY_AFTER_NAMESPACE();
 #include "ao/shared/prelude.h"
 #include "ao/surface_maps.h"
 #include "common/check.h"
+#include "common/first_touch.h"
 
 namespace softmol::ao {
 namespace {
@@ -108,7 +110,7 @@ OwnedTexel TexelOf(PatchKind kind, int width, int height, int i, int j) {
 }
 [[noreturn]] void TooSmall(const std::string& what) { throw AtlasTooSmall("AO atlas: " + what); }
 
-void CopyMirrors(std::vector<float>& texels, int side, const PatchTemplate& tpl,
+void CopyMirrors(Plane<float>& texels, int side, const PatchTemplate& tpl,
                  const PatchRect& r) {
   for (const MirrorTexel& m : tpl.mirrors)
     texels[size_t(r.y0 + m.y) * size_t(side) + size_t(r.x0 + m.x)] =
@@ -259,7 +261,8 @@ AoAtlas MakeAoAtlas(const AtlasLayout& layout) {
   if (layout.cylinderCount > 0)
     a.cylinderTemplate =
         MakePatchTemplate(PatchKind::kPrism, layout.cellWidth, layout.cylinderHeight);
-  a.texels.assign(size_t(layout.side) * size_t(layout.side), 0.0f);
+  a.texels.resize(size_t(layout.side) * size_t(layout.side));
+  FillInParallel(std::span(a.texels), 0.0f);
   return a;
 }
 

@@ -15,6 +15,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "common/uninit_vector.h"
+
 namespace softmol::ao {
 
 enum class PatchKind : uint8_t { kOctahedral, kCube, kPrism };
@@ -100,7 +102,7 @@ PatchTemplate MakePatchTemplate(PatchKind kind, int width, int height);
 struct AoAtlas {
   AtlasLayout layout;
   PatchTemplate sphereTemplate, cylinderTemplate;
-  std::vector<float> texels;  // side × side, 0 until baked
+  Plane<float> texels;  // side × side, 0 until baked (zeroed on every thread: 1tii's is 26 MB)
 };
 AoAtlas MakeAoAtlas(const AtlasLayout& layout);
 

@@ -123,6 +123,7 @@ HWY_AFTER_NAMESPACE();
 #include <cstring>
 #include <map>
 #include <mutex>
+#include <span>
 #include <stdexcept>
 #include <string>
 
@@ -133,7 +134,9 @@ HWY_AFTER_NAMESPACE();
 #include "ao/shadow_bake_setup.h"
 #include "ao/surface_maps.h"
 #include "common/check.h"
+#include "common/first_touch.h"
 #include "common/timer.h"
+#include "common/uninit_vector.h"
 
 namespace softmol::ao {
 
@@ -517,8 +520,10 @@ AoAtlas BakeAo(const raster::PrimitiveScene& scene, const BakeOptions& o, BakeSt
   std::vector<float> cc(tC, 0.0f), cs(tC, 0.0f), ca(tC, 0.0f);
   for (size_t k = 0; k < cOwned.size(); ++k)
     cc[k] = cOwned[k].point.x, cs[k] = cOwned[k].point.y, ca[k] = cOwned[k].point.z;
-  // Accumulators, one per owned texel of every patch (eq. 3's sum, and its normaliser).
-  std::vector<float> sAcc(nS * tS, 0.0f), cAcc(nC * tC, 0.0f), cNorm(nC * tC, 0.0f);
+  // Accumulators, one per owned texel of every patch (eq. 3's sum, and its normaliser): tens of
+  // MB (1tii: 23 MB), zeroed on every thread (common/first_touch.h says why).
+  UninitVector<float> sAcc(nS * tS), cAcc(nC * tC), cNorm(nC * tC);
+  for (UninitVector<float>* acc : {&sAcc, &cAcc, &cNorm}) FillInParallel(std::span(*acc), 0.0f);
 
   // Batches of pairs: their maps (top, then bottom, per pair) are drawn one pair after the
   // other, then one texel pass reads them all, so each texel's running sums stay in registers
@@ -529,7 +534,7 @@ AoAtlas BakeAo(const raster::PrimitiveScene& scene, const BakeOptions& o, BakeSt
   const int pairs = o.directions / 2;
   const size_t mapFloats = 2 * size_t(size) * size_t(size);
   const int batch = int(std::clamp<size_t>((size_t(16) << 20) / (mapFloats * sizeof(float)), 1, bake::kMaxBatch));
-  std::vector<float> maps(mapFloats * size_t(std::min(batch, pairs)));
+  UninitVector<float> maps(mapFloats * size_t(std::min(batch, pairs)));  // Rasterize clears what it draws
   std::vector<bake::PairView> views(static_cast<size_t>(batch));
   std::vector<float> pqx(tS * size_t(batch)), pqy(tS * size_t(batch)), pqh(tS * size_t(batch));
   Projected p;

@@ -109,7 +109,7 @@ int RunBake(const BakeArgs& a) {
   io::ImageFile img;
   img.width = atlas.layout.side;
   img.height = atlas.layout.side;
-  img.channels.push_back({"AO", atlas.texels, {}});
+  img.channels.push_back({"AO", std::vector<float>(atlas.texels.begin(), atlas.texels.end()), {}});
   io::WriteExr(a.output, img);
 
   if (!a.quiet) {

@@ -27,8 +27,8 @@ constexpr int kLocalSize = 64;      // local_size_x of both shaders
 constexpr int kMaxGroups = 65535;   // the dispatch limit GL 4.5 guarantees per dimension
 
 // One storage buffer holding `data` (at least one word: GL has no empty buffer store).
-template <class T>
-GLuint Storage(const std::vector<T>& data) {
+template <class T, class A>
+GLuint Storage(const std::vector<T, A>& data) {
   GLint limit = 0;
   glGetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &limit);
   const size_t bytes = std::max<size_t>(data.size() * sizeof(T), 4);

@@ -2,16 +2,12 @@
 #include "raster/gbuffer.h"
 
 #include <algorithm>
+#include <span>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
+#include "common/first_touch.h"
 
 namespace softmol::raster {
 namespace {
-
-// Samples per task of the parallel clear: a few pages, so first-touch faults spread over the
-// threads.
-constexpr size_t kClearGrain = 1 << 16;
 
 template <class T>
 void SizePlane(Plane<T>& v, bool want, size_t n, bool clear) {
@@ -21,10 +17,7 @@ void SizePlane(Plane<T>& v, bool want, size_t n, bool clear) {
   }
   const size_t kept = std::min(v.size(), n);
   v.resize(n);  // new elements uninitialised (UninitAllocator)
-  if (!clear) return;
-  tbb::parallel_for(tbb::blocked_range<size_t>(kept, n, kClearGrain), [&](const tbb::blocked_range<size_t>& r) {
-    std::fill(v.begin() + std::ptrdiff_t(r.begin()), v.begin() + std::ptrdiff_t(r.end()), T(0));
-  });
+  if (clear) FillInParallel(std::span(v).subspan(kept), T(0));  // first-touch faults on every thread
 }
 
 }  // namespace
