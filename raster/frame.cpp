@@ -81,13 +81,13 @@ struct TileCover {
 struct TileScratch {
   int size = 0;
   std::vector<float> f;     // depth, nx, ny, nz, su, sv, sw, line, capped, rowMax
-  std::vector<uint32_t> u;  // color, id
+  std::vector<uint32_t> u;  // color, id, rowOpen
   detail::TileView View(int ts) {
     const size_t n = size_t(ts) * size_t(ts);
     if (size != ts) {
       size = ts;
       f.assign(9 * n + size_t(ts), 0.0f);
-      u.assign(2 * n, 0u);
+      u.assign(2 * n + size_t(ts), 0u);
     }
     detail::TileView v;
     v.depth = f.data();
@@ -96,6 +96,7 @@ struct TileScratch {
     v.line = f.data() + 7 * n, v.capped = f.data() + 8 * n;
     v.rowMax = f.data() + 9 * n;
     v.baseColor = u.data(), v.primitiveId = u.data() + n;
+    v.rowOpen = u.data() + 2 * n;
     return v;
   }
 };

@@ -13,6 +13,8 @@
 #define SOFTMOL_RASTER_TILE_KERNEL_INL_H_
 #endif
 
+#include <limits>
+
 #include <hwy/cache_control.h>
 #include <hwy/highway.h>
 
@@ -102,6 +104,18 @@ HWY_INLINE void Write(D d, const detail::FrameConstants& fc, detail::TileView& t
   }
 }
 
+// How many kept lanes overwrote the farthest depth of their row (rowMax, as it was before the
+// primitive's row was drawn). Only then can the row's farthest depth change: every other
+// kept lane was nearer than it and only moved nearer still. While the farthest is the
+// background's +inf, these are the row's background pixels drawn over (rowOpen counts them
+// down). The coarse tests stay exact, and a fragment drawn over a pixel that is not its
+// row's farthest, or in a row with background left, costs no rescan of the row.
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE size_t ReplacedRowFarthest(D d, const detail::TileView& t, int y, hn::Mask<D> keep,
+                                      V stored) {
+  return hn::CountTrue(d, hn::And(keep, hn::Ge(stored, hn::Set(d, t.rowMax[y - t.y0]))));
+}
+
 // Twin of CapDepth (attributes.inc): Tarini et al. §5.3's ε(K + z) for a fragment moved onto
 // the near plane.
 template <class V>
@@ -139,9 +153,9 @@ HWY_INLINE hn::Mask<D> ContourLanes(D d, const detail::FrameConstants& fc, V X, 
 }
 
 // One vector of a sphere row: twin of SpherePixel (sphere_hit.inc), HitPoint, SphereNormal
-// and MulRows (attributes.inc). Returns true when a lane was kept.
+// and MulRows (attributes.inc). Returns ReplacedRowFarthest (0 when no lane was kept).
 template <bool kOrtho, bool kEdges, class D>
-HWY_INLINE bool SphereVector(D d, const detail::FrameConstants& fc, const detail::SpherePrim& s,
+HWY_INLINE size_t SphereVector(D d, const detail::FrameConstants& fc, const detail::SpherePrim& s,
                              const shared::SphereRow& row, float v, const PixelBox& c, int x, int y,
                              detail::TileView& t, detail::TileCounters& k) {
   using V = hn::Vec<D>;
@@ -149,7 +163,7 @@ HWY_INLINE bool SphereVector(D d, const detail::FrameConstants& fc, const detail
   const V pixel = hn::Add(hn::Iota(d, 0.0f), hn::Set(d, float(x)));
   const V stored = hn::LoadU(d, t.depth + i);
   const auto test = LanesToTest(d, pixel, c, s.zMin, stored);
-  if (hn::AllFalse(d, test)) return false;
+  if (hn::AllFalse(d, test)) return 0;
   k.fragmentsTested += hn::CountTrue(d, test);
 
   const V u = PixelToRay(d, pixel, fc.halfWidth, fc.pixelScale);
@@ -200,7 +214,7 @@ HWY_INLINE bool SphereVector(D d, const detail::FrameConstants& fc, const detail
     }
   }
   const auto keep = hn::And(test, hn::And(covered, hn::Lt(depth, stored)));
-  if (hn::AllFalse(d, keep)) return false;
+  if (hn::AllFalse(d, keep)) return 0;
   k.fragmentsKept += hn::CountTrue(d, keep);
 
   // HitPoint + SphereNormal (at the closest approach, over 1/d, for line lanes).
@@ -226,13 +240,13 @@ HWY_INLINE bool SphereVector(D d, const detail::FrameConstants& fc, const detail
   const hn::RebindToUnsigned<D> du;
   Write<kEdges>(d, fc, t, i, keep, stored, depth, nx, ny, nz, hn::Set(du, s.color), s.id, su, sv, sw,
         hn::IfThenElseZero(line, lineWeight), hn::IfThenElseZero(capped, hn::Set(d, 1.0f)));
-  return true;
+  return ReplacedRowFarthest(d, t, y, keep, stored);
 }
 
 // One vector of a cylinder row: twin of CylinderPixel (cylinder_hit.inc), HitPoint,
 // CylinderNormal and the surface coordinates (attributes.inc).
 template <bool kOrtho, bool kEdges, class D>
-HWY_INLINE bool CylinderVector(D d, const detail::FrameConstants& fc, const detail::CylinderPrim& p,
+HWY_INLINE size_t CylinderVector(D d, const detail::FrameConstants& fc, const detail::CylinderPrim& p,
                                const shared::CylinderRow& row, float v, const PixelBox& c, int x,
                                int y, detail::TileView& t, detail::TileCounters& k) {
   using V = hn::Vec<D>;
@@ -240,7 +254,7 @@ HWY_INLINE bool CylinderVector(D d, const detail::FrameConstants& fc, const deta
   const V pixel = hn::Add(hn::Iota(d, 0.0f), hn::Set(d, float(x)));
   const V stored = hn::LoadU(d, t.depth + i);
   const auto test = LanesToTest(d, pixel, c, p.zMin, stored);
-  if (hn::AllFalse(d, test)) return false;
+  if (hn::AllFalse(d, test)) return 0;
   k.fragmentsTested += hn::CountTrue(d, test);
 
   const V u = PixelToRay(d, pixel, fc.halfWidth, fc.pixelScale);
@@ -311,7 +325,7 @@ HWY_INLINE bool CylinderVector(D d, const detail::FrameConstants& fc, const deta
     }
   }
   const auto keep = hn::And(test, hn::And(covered, hn::Lt(depth, stored)));
-  if (hn::AllFalse(d, keep)) return false;
+  if (hn::AllFalse(d, keep)) return 0;
   k.fragmentsKept += hn::CountTrue(d, keep);
 
   // HitPoint + CylinderNormal (at the closest approach, over 1/d, for line lanes).
@@ -338,7 +352,7 @@ HWY_INLINE bool CylinderVector(D d, const detail::FrameConstants& fc, const deta
   const auto color = hn::IfThenElse(first, hn::Set(du, p.color0), hn::Set(du, p.color1));
   Write<kEdges>(d, fc, t, i, keep, stored, depth, nx, ny, nz, color, p.id, su, sv, sw,
         hn::IfThenElseZero(line, lineWeight), hn::IfThenElseZero(capped, hn::Set(d, 1.0f)));
-  return true;
+  return ReplacedRowFarthest(d, t, y, keep, stored);
 }
 
 // Twin of Lin3 (ellipsoid_hit.inc): s·k + c per component, c and k given as scalars.
@@ -352,7 +366,7 @@ HWY_INLINE void Lin3(D d, V s, const float* k, const shared::Float3& c, V& x, V&
 // One vector of an ellipsoid row: twin of EllipsoidPixel, EllipsoidParam and
 // EllipsoidNormal (ellipsoid_hit.inc).
 template <bool kOrtho, bool kEdges, class D>
-HWY_INLINE bool EllipsoidVector(D d, const detail::FrameConstants& fc,
+HWY_INLINE size_t EllipsoidVector(D d, const detail::FrameConstants& fc,
                                 const detail::EllipsoidPrim& e, const shared::EllipsoidRow& row,
                                 float /*v*/, const PixelBox& c, int x, int y, detail::TileView& t,
                                 detail::TileCounters& k) {
@@ -361,7 +375,7 @@ HWY_INLINE bool EllipsoidVector(D d, const detail::FrameConstants& fc,
   const V pixel = hn::Add(hn::Iota(d, 0.0f), hn::Set(d, float(x)));
   const V stored = hn::LoadU(d, t.depth + i);
   const auto test = LanesToTest(d, pixel, c, e.zMin, stored);
-  if (hn::AllFalse(d, test)) return false;
+  if (hn::AllFalse(d, test)) return 0;
   k.fragmentsTested += hn::CountTrue(d, test);
 
   const V u = PixelToRay(d, pixel, fc.halfWidth, fc.pixelScale);
@@ -394,7 +408,7 @@ HWY_INLINE bool EllipsoidVector(D d, const detail::FrameConstants& fc,
     }
   }
   const auto keep = hn::And(test, hn::And(covered, hn::Lt(depth, stored)));
-  if (hn::AllFalse(d, keep)) return false;
+  if (hn::AllFalse(d, keep)) return 0;
   k.fragmentsKept += hn::CountTrue(d, keep);
 
   // EllipsoidParam: x_p = t·d' + p' (for a cap, the ray's point on the plane).
@@ -418,32 +432,49 @@ HWY_INLINE bool EllipsoidVector(D d, const detail::FrameConstants& fc,
   const hn::RebindToUnsigned<D> du;
   Write<kEdges>(d, fc, t, i, keep, stored, depth, nx, ny, nz, hn::Set(du, e.color), e.id, xpx, xpy, xpz, zero,
         hn::IfThenElseZero(capped, hn::Set(d, 1.0f)));
-  return true;
+  return ReplacedRowFarthest(d, t, y, keep, stored);
 }
 
-// Farthest depth of a tile row (the coarse test's per-row bound), vectorised with
-// compare + select. Exact in any order: depths are positive or +inf, never NaN or ±0, so this
-// equals the scalar loop of detail::UpdateRowMax bit for bit.
-HWY_INLINE void RowMaxSimd(detail::TileView& t, int y) {
-  const hn::ScalableTag<float> d;
-  const int n = int(hn::Lanes(d)), w = t.x1 - t.x0;
-  const float* row = t.depth + t.Index(t.x0, y);
-  if (w < n) {
-    detail::UpdateRowMax(t, y);
-    return;
-  }
-  auto m = hn::LoadU(d, row);
-  for (int x = n; x + n <= w; x += n) {
-    const auto v = hn::LoadU(d, row + x);
-    m = hn::IfThenElse(hn::Gt(v, m), v, m);
-  }
-  const auto tail = hn::LoadU(d, row + (w - n));  // overlapping last vector: harmless for max
-  m = hn::IfThenElse(hn::Gt(tail, m), tail, m);
+// The largest lane of m, halving the vector at each step in registers (log2 n dependent
+// compare + selects, not n through memory).
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE float FarthestLane(D d, V m) {
+#if HWY_HAVE_SCALABLE || HWY_TARGET == HWY_SCALAR
   HWY_ALIGN float lanes[hn::MaxLanes(d)];
   hn::Store(m, d, lanes);
   float r = lanes[0];
-  for (int i = 1; i < n; ++i) r = lanes[i] > r ? lanes[i] : r;
-  t.rowMax[y - t.y0] = r;
+  for (size_t i = 1; i < hn::Lanes(d); ++i) r = lanes[i] > r ? lanes[i] : r;
+  return r;
+#else
+  if constexpr (hn::MaxLanes(d) == 1) {
+    return hn::GetLane(m);
+  } else {
+    const hn::Half<D> dh;
+    const auto lo = hn::LowerHalf(dh, m), hi = hn::UpperHalf(dh, m);
+    return FarthestLane(dh, hn::IfThenElse(hn::Gt(hi, lo), hi, lo));
+  }
+#endif
+}
+
+// The farthest of p[0, count): the coarse tests' per-row and per-tile bounds, vectorised with
+// compare + select. Exact in any order: depths are positive or +inf, never NaN or ±0, so this
+// equals the scalar loops of detail::UpdateRowMax and UpdateTileMax bit for bit.
+HWY_INLINE float Farthest(const float* p, int count) {
+  const hn::ScalableTag<float> d;
+  const int n = int(hn::Lanes(d));
+  if (count < n) {
+    float r = p[0];
+    for (int i = 1; i < count; ++i) r = p[i] > r ? p[i] : r;
+    return r;
+  }
+  auto m = hn::LoadU(d, p);
+  for (int x = n; x + n <= count; x += n) {
+    const auto v = hn::LoadU(d, p + x);
+    m = hn::IfThenElse(hn::Gt(v, m), v, m);
+  }
+  const auto tail = hn::LoadU(d, p + (count - n));  // overlapping last vector: harmless for a maximum
+  m = hn::IfThenElse(hn::Gt(tail, m), tail, m);
+  return FarthestLane(d, m);
 }
 
 // Walks the rows of a primitive's clipped box: full vectors starting at tile-aligned
@@ -454,19 +485,28 @@ HWY_INLINE void DrawRows(const detail::FrameConstants& fc, const Prim& prim, con
                          detail::TileView& t, RowSetup rowSetup, VectorN vecN, Vector1 vec1) {
   const hn::ScalableTag<float> d;
   const int n = int(hn::Lanes(d));
-  bool drew = false;
+  constexpr float kBackground = std::numeric_limits<float>::infinity();
+  bool tileFarthestReplaced = false;
   for (int y = c.y0; y <= c.y1; ++y) {
-    if (t.rowMax[y - t.y0] < prim.zMin) continue;
+    float& rowFarthest = t.rowMax[y - t.y0];
+    if (rowFarthest < prim.zMin) continue;
     const float v = shared::PixelToRay(float(y), fc.halfHeight, fc.pixelScale);
     const Row row = rowSetup(v);
-    bool any = false;
+    size_t replaced = 0;  // ReplacedRowFarthest, summed over the row's vectors
     int x = t.x0 + ((c.x0 - t.x0) / n) * n;
-    for (; x <= c.x1 && x + n <= t.x1; x += n) any |= vecN(row, v, x, y);
-    for (; x <= c.x1; ++x) any |= vec1(row, v, x, y);
-    if (any) RowMaxSimd(t, y);
-    drew |= any;
+    for (; x <= c.x1 && x + n <= t.x1; x += n) replaced += vecN(row, v, x, y);
+    for (; x <= c.x1; ++x) replaced += vec1(row, v, x, y);
+    if (replaced == 0) continue;
+    if (rowFarthest == kBackground) {
+      uint32_t& open = t.rowOpen[y - t.y0];
+      open -= uint32_t(replaced);
+      if (open != 0) continue;  // background left: the row's farthest stays +inf
+    }
+    // Likewise the tile's farthest can only change when this row held it.
+    tileFarthestReplaced |= rowFarthest == t.tileMax;
+    rowFarthest = Farthest(t.depth + t.Index(t.x0, y), t.x1 - t.x0);
   }
-  if (drew) detail::UpdateTileMax(t);
+  if (tileFarthestReplaced) t.tileMax = Farthest(t.rowMax, t.y1 - t.y0);
 }
 
 // Prefetches the cache lines of *p (a primitive is one to three lines, not aligned to them).

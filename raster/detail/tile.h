@@ -96,6 +96,10 @@ struct TileView {
   float* line = nullptr;    // kLine
   float* capped = nullptr;  // kCapped
   float* rowMax = nullptr;  // scratch, y1 − y0 floats: farthest depth of each tile row
+  // Scratch, y1 − y0 counts: pixels of each row still at the background depth (+inf). While
+  // one is left the row's farthest is +inf whatever else is drawn there, so the SIMD kernel
+  // need not rescan it (the scalar twin rescans and ignores this).
+  uint32_t* rowOpen = nullptr;
   float tileMax = 0;        // farthest depth in the tile (max of rowMax)
   size_t Index(int x, int y) const { return size_t(y - y0) * size_t(stride) + size_t(x - x0); }
 };

@@ -36,6 +36,7 @@ inline void ClearTile(const FrameConstants& frame, TileView& t) noexcept {
     if (frame.channels & kCapped) std::fill(t.capped + b, t.capped + e, 0.0f);
   }
   std::fill(t.rowMax, t.rowMax + (t.y1 - t.y0), kInf);
+  if (t.rowOpen) std::fill(t.rowOpen, t.rowOpen + (t.y1 - t.y0), uint32_t(t.x1 - t.x0));
   t.tileMax = kInf;
 }
 

@@ -22,10 +22,10 @@ namespace {
 
 struct Planes {
   std::vector<float> depth, nx, ny, nz, su, sv, sw, line, capped, rowMax;
-  std::vector<uint32_t> color, id;
+  std::vector<uint32_t> color, id, rowOpen;
   Planes(size_t n, size_t rows)
       : depth(n), nx(n), ny(n), nz(n), su(n), sv(n), sw(n), line(n), capped(n), rowMax(rows),
-        color(n), id(n) {}
+        color(n), id(n), rowOpen(rows) {}
   detail::TileView View(int w, int h) {
     detail::TileView t;
     t.x0 = 0, t.y0 = 0, t.x1 = w, t.y1 = h, t.stride = w;
@@ -33,7 +33,7 @@ struct Planes {
     t.baseColor = color.data(), t.primitiveId = id.data();
     t.surfaceU = su.data(), t.surfaceV = sv.data(), t.surfaceW = sw.data();
     t.line = line.data(), t.capped = capped.data();
-    t.rowMax = rowMax.data();
+    t.rowMax = rowMax.data(), t.rowOpen = rowOpen.data();
     return t;
   }
 };
@@ -114,6 +114,13 @@ void RunScenes(Edges mode, EdgeCounts& counts) {
     detail::RasterizeTile(fc, prims, entries, ts, ks);
     detail::RasterizeTileScalar(fc, prims, entries, tr, kr);
     EXPECT_EQ(ks.fragmentsKept, kr.fragmentsKept);
+    // The coarse depth bounds: the SIMD kernel keeps them lazily (rowOpen, ReplacedRowFarthest),
+    // the scalar one rescans after every draw. Both must hold the same values and so skip the
+    // same work.
+    EXPECT_EQ(ks.fragmentsTested, kr.fragmentsTested);
+    EXPECT_EQ(ks.skippedByDepth, kr.skippedByDepth);
+    ExpectSameBits(simd.rowMax, scalar.rowMax, "rowMax (x = 0, y = row)", 1);
+    EXPECT_EQ(ts.tileMax, tr.tileMax);
     counts.kept += kr.fragmentsKept;
     for (size_t i = 0; i < scalar.line.size(); ++i) {
       counts.lines += scalar.line[i] > 0.0f ? 1 : 0;
