@@ -18,7 +18,7 @@ using raster::detail::SpherePrim;
 static_assert(std::is_standard_layout_v<SpherePrim> && sizeof(SpherePrim) % 4 == 0);
 static_assert(std::is_standard_layout_v<CylinderPrim> && sizeof(CylinderPrim) % 4 == 0);
 static_assert(std::is_standard_layout_v<EllipsoidPrim> && sizeof(EllipsoidPrim) % 4 == 0);
-static_assert(alignof(SpherePrim) == 4 && alignof(CylinderPrim) == 4 && alignof(EllipsoidPrim) == 4);
+static_assert(alignof(SpherePrim) % 4 == 0 && alignof(CylinderPrim) % 4 == 0 && alignof(EllipsoidPrim) == 4);
 static_assert(sizeof(raster::detail::PixelBox) == 16);
 
 void Add(std::string& s, const char* type, const char* field, size_t byteOffset) {

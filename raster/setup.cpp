@@ -90,6 +90,7 @@ ViewSetup MakeViewSetup(const Camera& camera, const PrimitiveScene& scene) {
   v.halfHeight = HalfHeight(camera);
   v.nearPlane = camera.nearPlane;
   v.farPlane = camera.farPlane;
+  v.cylinderIdBase = uint32_t(scene.spheres.size());
   if (!(camera.nearPlane > 0.0) || !(camera.farPlane > 0.0)) {
     Camera fitted = camera;
     FitNearFar(fitted, scene);
@@ -112,6 +113,7 @@ FrameConstants MakeFrameConstants(const ViewSetup& v, uint32_t channels) {
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) fc.viewToWorld[3 * r + c] = float(cols[c][r]);
   fc.channels = channels | kDepth;
+  fc.cylinderIdBase = v.cylinderIdBase;
   return fc;
 }
 
@@ -250,7 +252,7 @@ bool SetupCylinder(const PrimitiveScene& scene, const ViewSetup& v, size_t i, Cy
   p.invR = float(1.0 / r);
   p.r = float(r);
   p.len = float(len);
-  p.halfLen = float(0.5 * len);
+  p.halfLen = p.len * 0.5f;
   p.invLen = float(1.0 / len);
   SetSurfaceFrame(v, wa, wb, surfaceFrame, p);
   p.zMin = ZMinKey(zNear, ZMinFloor(v));
@@ -279,7 +281,7 @@ void PackCylinder(const PrimitiveScene& scene, const ViewSetup& v, size_t i, con
   p.r = float(r);
   const T len = l.len[j];
   p.len = float(len);
-  p.halfLen = float(T(0.5) * len);
+  p.halfLen = p.len * 0.5f;
   p.invLen = float(T(1) / len);
   SetSurfaceFrame(v, glm::dvec3(in.x0[i], in.y0[i], in.z0[i]), glm::dvec3(in.x1[i], in.y1[i], in.z1[i]), surfaceFrame,
                   p);

@@ -244,16 +244,18 @@ HWY_INLINE size_t SphereVector(D d, const detail::FrameConstants& fc, const deta
 }
 
 // One vector of a cylinder row: twin of CylinderPixel (cylinder_hit.inc), HitPoint,
-// CylinderNormal and the surface coordinates (attributes.inc).
+// CylinderNormal and the surface coordinates (attributes.inc). Its id and nearest depth come
+// from the bin entry, so the default kernel reads only the record's first line.
 template <bool kOrtho, bool kEdges, class D>
 HWY_INLINE size_t CylinderVector(D d, const detail::FrameConstants& fc, const detail::CylinderPrim& p,
-                               const shared::CylinderRow& row, float v, const PixelBox& c, int x,
-                               int y, detail::TileView& t, detail::TileCounters& k) {
+                                 uint32_t id, float zMin, const shared::CylinderRow& row, float v,
+                                 const PixelBox& c, int x, int y, detail::TileView& t,
+                                 detail::TileCounters& k) {
   using V = hn::Vec<D>;
   const size_t i = t.Index(x, y);
   const V pixel = hn::Add(hn::Iota(d, 0.0f), hn::Set(d, float(x)));
   const V stored = hn::LoadU(d, t.depth + i);
-  const auto test = LanesToTest(d, pixel, c, p.zMin, stored);
+  const auto test = LanesToTest(d, pixel, c, zMin, stored);
   if (hn::AllFalse(d, test)) return 0;
   k.fragmentsTested += hn::CountTrue(d, test);
 
@@ -348,9 +350,9 @@ HWY_INLINE size_t CylinderVector(D d, const detail::FrameConstants& fc, const de
     sw = Dot3(nx, ny, nz, hn::Set(d, p.e2x), hn::Set(d, p.e2y), hn::Set(d, p.e2z));
   }
   const hn::RebindToUnsigned<D> du;
-  const auto first = hn::RebindMask(du, hn::Lt(axial, hn::Set(d, p.halfLen)));
+  const auto first = hn::RebindMask(du, hn::Lt(axial, hn::Set(d, p.len * 0.5f)));  // halfLen
   const auto color = hn::IfThenElse(first, hn::Set(du, p.color0), hn::Set(du, p.color1));
-  Write<kEdges>(d, fc, t, i, keep, stored, depth, nx, ny, nz, color, p.id, su, sv, sw,
+  Write<kEdges>(d, fc, t, i, keep, stored, depth, nx, ny, nz, color, id, su, sv, sw,
         hn::IfThenElseZero(line, lineWeight), hn::IfThenElseZero(capped, hn::Set(d, 1.0f)));
   return ReplacedRowFarthest(d, t, y, keep, stored);
 }
@@ -480,8 +482,8 @@ HWY_INLINE float Farthest(const float* p, int count) {
 // Walks the rows of a primitive's clipped box: full vectors starting at tile-aligned
 // columns (lanes outside the box are masked), then one lane at a time where a full vector
 // would cross the tile's right edge (the frame's last tile column only).
-template <bool kOrtho, class Prim, class Row, class RowSetup, class Vector1, class VectorN>
-HWY_INLINE void DrawRows(const detail::FrameConstants& fc, const Prim& prim, const PixelBox& c,
+template <bool kOrtho, class Row, class RowSetup, class Vector1, class VectorN>
+HWY_INLINE void DrawRows(const detail::FrameConstants& fc, float zMin, const PixelBox& c,
                          detail::TileView& t, RowSetup rowSetup, VectorN vecN, Vector1 vec1) {
   const hn::ScalableTag<float> d;
   const int n = int(hn::Lanes(d));
@@ -489,7 +491,7 @@ HWY_INLINE void DrawRows(const detail::FrameConstants& fc, const Prim& prim, con
   bool tileFarthestReplaced = false;
   for (int y = c.y0; y <= c.y1; ++y) {
     float& rowFarthest = t.rowMax[y - t.y0];
-    if (rowFarthest < prim.zMin) continue;
+    if (rowFarthest < zMin) continue;
     const float v = shared::PixelToRay(float(y), fc.halfHeight, fc.pixelScale);
     const Row row = rowSetup(v);
     size_t replaced = 0;  // ReplacedRowFarthest, summed over the row's vectors
@@ -509,22 +511,26 @@ HWY_INLINE void DrawRows(const detail::FrameConstants& fc, const Prim& prim, con
   if (tileFarthestReplaced) t.tileMax = Farthest(t.rowMax, t.y1 - t.y0);
 }
 
-// Prefetches the cache lines of *p (a primitive is one to three lines, not aligned to them).
-// The loop runs past the last byte rather than prefetching it, and each kind prefetches in its
-// own branch: GCC 12 drops every prefetch of the function when one address is
-// p + sizeof(T) - 1 or is chosen between the kinds' arrays by ?: (checked in the disassembly).
+// Prefetches the first `bytes` of *p. Each kind prefetches in its own branch: GCC 12 drops
+// every prefetch of the function when an address is chosen between the kinds' arrays by ?:
+// (checked in the disassembly).
 template <class T>
-HWY_INLINE void PrefetchLines(const T* p) {
-  const char* bytes = reinterpret_cast<const char*>(p);
-  for (size_t offset = 0; offset < sizeof(T) + 63; offset += 64) hwy::Prefetch(bytes + offset);
+HWY_INLINE void PrefetchLines(const T* p, size_t bytes) {
+  const char* first = reinterpret_cast<const char*>(p);
+  for (size_t offset = 0; offset < bytes; offset += 64) hwy::Prefetch(first + offset);
 }
 
-HWY_INLINE void PrefetchPrimitive(const detail::PrimArrays& prims, const detail::BinEntry& e) {
+// The cache lines of a primitive that the kernel will read: spheres and cylinders are
+// line-aligned records (tile.h), and the default kernel reads one line of a cylinder;
+// ellipsoids are packed (one to three lines, not aligned to them: the loop runs past the
+// last byte rather than prefetching p + size - 1, which GCC 12 also drops).
+HWY_INLINE void PrefetchPrimitive(const detail::PrimArrays& prims, const detail::BinEntry& e,
+                                  size_t cylinderBytes) {
   const uint32_t index = e.code & detail::kIndexMask;
   switch (e.code >> detail::kKindShift) {
-    case detail::kSphereKind: return PrefetchLines(prims.spheres + index);
-    case detail::kCylinderKind: return PrefetchLines(prims.cylinders + index);
-    default: return PrefetchLines(prims.ellipsoids + index);
+    case detail::kSphereKind: return PrefetchLines(prims.spheres + index, sizeof(detail::SpherePrim));
+    case detail::kCylinderKind: return PrefetchLines(prims.cylinders + index, cylinderBytes);
+    default: return PrefetchLines(prims.ellipsoids + index, sizeof(detail::EllipsoidPrim) + 63);
   }
 }
 
@@ -538,10 +544,13 @@ void RasterizeTileT(const detail::FrameConstants& fc, const detail::PrimArrays& 
   // line of the primitive is prefetched some entries ahead so that the misses overlap with
   // drawing (most entries of a large scene cover a pixel or less, far quicker than a miss).
   constexpr size_t kPrefetch = 16;
-  for (size_t j = 0; j < std::min(kPrefetch, entries.size()); ++j) PrefetchPrimitive(prims, entries[j]);
+  const bool cylinderFirstLine = !kOrtho && !kEdges && !(fc.channels & kSurfaceCoord);
+  const size_t cylinderBytes = cylinderFirstLine ? 64 : sizeof(detail::CylinderPrim);
+  for (size_t j = 0; j < std::min(kPrefetch, entries.size()); ++j)
+    PrefetchPrimitive(prims, entries[j], cylinderBytes);
   for (size_t j = 0; j < entries.size(); ++j) {
     const detail::BinEntry& e = entries[j];
-    if (j + kPrefetch < entries.size()) PrefetchPrimitive(prims, entries[j + kPrefetch]);
+    if (j + kPrefetch < entries.size()) PrefetchPrimitive(prims, entries[j + kPrefetch], cylinderBytes);
     PixelBox c;
     if (!detail::ClipToTile(e, t, c)) continue;
     if (detail::CoveredByNearer(t, c, e.zMin)) {
@@ -551,8 +560,8 @@ void RasterizeTileT(const detail::FrameConstants& fc, const detail::PrimArrays& 
     const uint32_t index = e.code & detail::kIndexMask;
     if ((e.code >> detail::kKindShift) == detail::kSphereKind) {
       const detail::SpherePrim& s = prims.spheres[index];
-      DrawRows<kOrtho, detail::SpherePrim, shared::SphereRow>(
-          fc, s, c, t, [&](float v) { return shared::SphereRowSetup(kOrtho, v, s.cx, s.cy, s.cz); },
+      DrawRows<kOrtho, shared::SphereRow>(
+          fc, e.zMin, c, t, [&](float v) { return shared::SphereRowSetup(kOrtho, v, s.cx, s.cy, s.cz); },
           [&](const shared::SphereRow& row, float v, int x, int y) {
             return SphereVector<kOrtho, kEdges>(d, fc, s, row, v, c, x, y, t, k);
           },
@@ -566,8 +575,8 @@ void RasterizeTileT(const detail::FrameConstants& fc, const detail::PrimArrays& 
         r.x = v[0], r.y = v[1], r.z = v[2];
         return r;
       };
-      DrawRows<kOrtho, detail::EllipsoidPrim, shared::EllipsoidRow>(
-          fc, q, c, t,
+      DrawRows<kOrtho, shared::EllipsoidRow>(
+          fc, e.zMin, c, t,
           [&](float v) {
             return shared::EllipsoidRowSetup(v, f3(q.Dv), f3(q.D0), f3(q.Xv), f3(q.X0), q.Bv, q.B0,
                                              f3(q.Pv), f3(q.P0));
@@ -580,17 +589,18 @@ void RasterizeTileT(const detail::FrameConstants& fc, const detail::PrimArrays& 
           });
     } else {
       const detail::CylinderPrim& p = prims.cylinders[index];
-      DrawRows<kOrtho, detail::CylinderPrim, shared::CylinderRow>(
-          fc, p, c, t,
+      const uint32_t id = fc.cylinderIdBase + index;
+      DrawRows<kOrtho, shared::CylinderRow>(
+          fc, e.zMin, c, t,
           [&](float v) {
             return shared::CylinderRowSetup(kOrtho, v, p.py, p.pz, p.wx, p.wy, p.wz, p.my, p.mz,
                                             p.pw);
           },
           [&](const shared::CylinderRow& row, float v, int x, int y) {
-            return CylinderVector<kOrtho, kEdges>(d, fc, p, row, v, c, x, y, t, k);
+            return CylinderVector<kOrtho, kEdges>(d, fc, p, id, e.zMin, row, v, c, x, y, t, k);
           },
           [&](const shared::CylinderRow& row, float v, int x, int y) {
-            return CylinderVector<kOrtho, kEdges>(d1, fc, p, row, v, c, x, y, t, k);
+            return CylinderVector<kOrtho, kEdges>(d1, fc, p, id, e.zMin, row, v, c, x, y, t, k);
           });
     }
   }

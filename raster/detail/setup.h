@@ -29,6 +29,7 @@ struct ViewSetup {
   double contourWidth = 0;  // ξ (Å): sphere and cylinder boxes and zMin grow by it
   bool capping = false;     // nearPlane is the clip plane of near-plane capping
   bool floatSetup = false;  // spheres and cylinders set up in float (SetupPrecision::kFloat)
+  uint32_t cylinderIdBase = 0;  // ids: spheres first, then cylinders (FrameConstants)
   glm::dvec3 ToEye(double x, double y, double z) const;  // camera-relative, double
 };
 

@@ -4,6 +4,7 @@
 // G-buffer, and the kernel entry points (SIMD, dispatched once per tile, and scalar twin).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <span>
 
@@ -25,14 +26,20 @@ struct FrameConstants {
   float contourEta = 0;      // η of depth-aware lines; 0 = lines at the silhouette depth
   bool capping = false;      // near-plane capping (§5.3); nearPlane is then the clip plane
   float capEps = 0;          // kCapEpsilon · nearPlane (CapDepth)
+  uint32_t cylinderIdBase = 0;  // the scene's sphere count: cylinder i has id base + i
 };
 
 struct PixelBox {
   int32_t x0, y0, x1, y1;  // inclusive pixel range, clamped to the frame
 };
 
+// The tile kernels read the primitive constants in bin order, scattered over memory, one
+// bin entry costing little more than the cache misses of its constants: each record is
+// aligned to a cache line, and what the default kernel reads of it lies in its first line.
+
 // Sphere, eye space relative to the eye (perspective) or to the view axis (orthographic).
-struct SpherePrim {
+// One cache line.
+struct alignas(64) SpherePrim {
   float cx, cy, cz;
   float rr;  // r²
   float c0;  // perspective: |c|² − r² (double); orthographic: unused
@@ -43,20 +50,30 @@ struct SpherePrim {
   PixelBox box;
 };
 
-struct CylinderPrim {
+// Two cache lines. The first holds all that the perspective kernel without edge cueing or
+// surface coordinates reads (zMin comes with the bin entry, halfLen = len · 0.5 exactly, id =
+// cylinderIdBase + index), so that kernel fetches one line per cylinder.
+struct alignas(64) CylinderPrim {
   float px, py, pz;  // centre of end 0
   float wx, wy, wz;  // unit axis
   float mx, my, mz;  // p × w
   float pw;          // p·w
   float c0;          // perspective: |p⊥|² − r² (double)
-  float aOrtho;      // wx² + wy²
-  float rr, invR, len, halfLen, invLen;
-  float r;  // radius (contour lines measure d − r)
-  float e1x, e1y, e1z, e2x, e2y, e2z;  // eye-space images of the world-space cylinder frame
+  float rr, invR, len;
+  uint32_t color0, color1;
+  // ---- second line ----
   float zMin;
-  uint32_t color0, color1, id;
+  float halfLen;  // len · 0.5f: exact, so a kernel may compute it instead
+  uint32_t id;
+  float aOrtho;   // wx² + wy²
+  float r;        // radius (contour lines measure d − r)
+  float invLen;
+  float e1x, e1y, e1z, e2x, e2y, e2z;  // eye-space images of the world-space cylinder frame
   PixelBox box;
 };
+static_assert(sizeof(CylinderPrim) == 128 && offsetof(CylinderPrim, zMin) == 64,
+              "the first line of a cylinder holds what the default kernel reads");
+static_assert(sizeof(SpherePrim) == 64);
 
 // Ellipsoid: the linear (u, v) coefficients of ellipsoid_hit.inc (3 floats each, x y z).
 struct EllipsoidPrim {
