@@ -1,5 +1,6 @@
 // cli/heap_policy.h — how the `softmol` process asks glibc's allocator to treat memory: keep
-// what it frees for the next allocation instead of handing it back to the kernel.
+// what it frees for the next allocation instead of handing it back to the kernel, in a heap
+// backed by transparent huge pages.
 #pragma once
 
 namespace softmol::cli {
