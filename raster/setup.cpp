@@ -9,12 +9,14 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 #include <limits>
 #include <vector>
 
+#include "common/stream_copy.h"
 #include "raster/detail/setup_kernel.h"
 
 namespace softmol::raster::detail {
@@ -380,6 +382,30 @@ void ForEachBatch(size_t count, Batch&& batch) {
   });
 }
 
+// A batch of packed primitives, their bin entries and sort keys, made in the task's cache and
+// then copied out as a whole. A large scene's output (192 MB for a million balls and sticks)
+// is far larger than the caches: written in place, every record's cache line was first read
+// from memory for ownership, and the packing stalled on those reads (its stores waiting in a
+// full store buffer). Streamed, the lines are written without being read. A small scene's
+// output is copied plainly, so that it stays in the cache for the tiles that read it next.
+template <class Prim>
+struct PackedBatch {
+  alignas(64) Prim prims[kSetupBatch];
+  BinEntry entries[kSetupBatch];
+  uint32_t keys[kSetupBatch];
+  void CopyOut(size_t first, size_t n, bool stream, UninitVector<Prim>& prim, UninitVector<BinEntry>& entry,
+               UninitVector<uint32_t>& key) const {
+    const auto copy = stream ? StreamCopy : [](void* d, const void* s, size_t b) { std::memcpy(d, s, b); };
+    copy(prim.data() + first, prims, n * sizeof(Prim));
+    copy(entry.data() + first, entries, n * sizeof(BinEntry));
+    copy(key.data() + first, keys, n * sizeof(uint32_t));
+    if (stream) StreamFence();
+  }
+};
+
+// Above this many bytes of setup output, PackedBatch streams (a last-level cache's worth).
+constexpr size_t kStreamSetupFrom = size_t(32) << 20;
+
 // A batch of the scene's position arrays as the setup's type: rounded to float into kArrays
 // copies, as a float vertex buffer holds them; the double setup reads the scene's own arrays.
 template <class T, int kArrays>
@@ -397,10 +423,11 @@ struct BatchPositions<double, kArrays> {
 
 // Spheres: vectorised batches (raster/setup_kernel.cpp), packed here.
 template <class T>
-void SetupSpheres(const PrimitiveScene& scene, const SetupConstants& k, SetupOutput& out) {
+void SetupSpheres(const PrimitiveScene& scene, const SetupConstants& k, bool stream, SetupOutput& out) {
   const SphereSet& in = scene.spheres;
   ForEachBatch(in.size(), [&](size_t first, size_t n) {
     SphereSetupLanes<T> lanes;
+    PackedBatch<SpherePrim> packed;
     BatchPositions<T, 3> at;
     T radius[kSetupBatch];
     for (size_t j = 0; j < n; ++j) radius[j] = T(in.radius[first + j]);
@@ -408,35 +435,40 @@ void SetupSpheres(const PrimitiveScene& scene, const SetupConstants& k, SetupOut
                       lanes);
     for (size_t j = 0; j < n; ++j) {
       const size_t i = first + j;
-      SpherePrim& p = out.spheres[i];
+      SpherePrim& p = packed.prims[j];
+      PixelBox box = {0, 0, -1, -1};
+      float zMin = 0.0f;
       if (lanes.valid[j] == 0.0) {
         p = SpherePrim{};
-        p.box = {0, 0, -1, -1};
-        out.sphereKey[i] = kCulledKey;
+        packed.keys[j] = kCulledKey;
       } else {
         p.cx = float(lanes.cx[j]), p.cy = float(lanes.cy[j]), p.cz = float(lanes.cz[j]);
         p.rr = float(lanes.rr[j]);
         p.c0 = float(lanes.c0[j]);  // |c|² − r² in double: its cancellation ≪ float rounding
         p.invR = float(T(1) / radius[j]);
         p.r = float(radius[j]);
-        p.zMin = float(lanes.zMin[j]);
+        zMin = float(lanes.zMin[j]);
+        p.zMin = zMin;
         p.color = in.color[i];
         p.id = uint32_t(i);
-        p.box = {int32_t(lanes.x0[j]), int32_t(lanes.y0[j]), int32_t(lanes.x1[j]), int32_t(lanes.y1[j])};
-        out.sphereKey[i] = std::bit_cast<uint32_t>(p.zMin);
+        box = {int32_t(lanes.x0[j]), int32_t(lanes.y0[j]), int32_t(lanes.x1[j]), int32_t(lanes.y1[j])};
+        packed.keys[j] = std::bit_cast<uint32_t>(zMin);
       }
-      out.sphereEntry[i] = Entry(uint32_t(i) | (kSphereKind << kKindShift), p.zMin, p.box);
+      p.box = box;
+      packed.entries[j] = Entry(uint32_t(i) | (kSphereKind << kKindShift), zMin, box);
     }
+    packed.CopyOut(first, n, stream, out.spheres, out.sphereEntry, out.sphereKey);
   });
 }
 
 // Cylinders: vectorised batches too, packed here exactly as SetupCylinder packs.
 template <class T>
 void SetupCylinders(const PrimitiveScene& scene, const ViewSetup& v, const SetupConstants& k, bool surfaceFrame,
-                    SetupOutput& out) {
+                    bool stream, SetupOutput& out) {
   const CylinderSet& cyl = scene.cylinders;
   ForEachBatch(cyl.size(), [&](size_t first, size_t n) {
     CylinderSetupLanes<T> lanes;
+    PackedBatch<CylinderPrim> packed;
     BatchPositions<T, 6> at;
     T radius[kSetupBatch];
     for (size_t j = 0; j < n; ++j) radius[j] = T(cyl.radius[first + j]);
@@ -445,17 +477,22 @@ void SetupCylinders(const PrimitiveScene& scene, const ViewSetup& v, const Setup
     SetupCylindersBatch(k, ends, radius, n, lanes);
     for (size_t j = 0; j < n; ++j) {
       const size_t i = first + j;
-      CylinderPrim& p = out.cylinders[i];
+      CylinderPrim& p = packed.prims[j];
+      PixelBox box = {0, 0, -1, -1};
+      float zMin = 0.0f;
       if (lanes.valid[j] == 0.0) {
         p = CylinderPrim{};
-        p.box = {0, 0, -1, -1};
-        out.cylinderKey[i] = kCulledKey;
+        p.box = box;
+        packed.keys[j] = kCulledKey;
       } else {
         PackCylinder(scene, v, i, lanes, j, radius[j], surfaceFrame, p);
-        out.cylinderKey[i] = std::bit_cast<uint32_t>(p.zMin);
+        box = {int32_t(lanes.x0[j]), int32_t(lanes.y0[j]), int32_t(lanes.x1[j]), int32_t(lanes.y1[j])};
+        zMin = float(lanes.zMin[j]);
+        packed.keys[j] = std::bit_cast<uint32_t>(zMin);
       }
-      out.cylinderEntry[i] = Entry(uint32_t(i) | (kCylinderKind << kKindShift), p.zMin, p.box);
+      packed.entries[j] = Entry(uint32_t(i) | (kCylinderKind << kKindShift), zMin, box);
     }
+    packed.CopyOut(first, n, stream, out.cylinders, out.cylinderEntry, out.cylinderKey);
   });
 }
 
@@ -478,12 +515,14 @@ uint64_t SetupPrimitives(const PrimitiveScene& scene, const ViewSetup& v, SetupO
   out.cylinders.resize(nC), out.cylinderKey.resize(nC), out.cylinderEntry.resize(nC);
   out.ellipsoids.resize(nE), out.ellipsoidKey.resize(nE), out.ellipsoidEntry.resize(nE);
   const SetupConstants k = MakeSetupConstants(v);
+  const size_t bytes = nS * (sizeof(SpherePrim) + sizeof(BinEntry) + 4) + nC * (sizeof(CylinderPrim) + sizeof(BinEntry) + 4);
+  const bool stream = bytes >= kStreamSetupFrom;
   if (v.floatSetup) {
-    SetupSpheres<float>(scene, k, out);
-    SetupCylinders<float>(scene, v, k, surfaceFrame, out);
+    SetupSpheres<float>(scene, k, stream, out);
+    SetupCylinders<float>(scene, v, k, surfaceFrame, stream, out);
   } else {
-    SetupSpheres<double>(scene, k, out);
-    SetupCylinders<double>(scene, v, k, surfaceFrame, out);
+    SetupSpheres<double>(scene, k, stream, out);
+    SetupCylinders<double>(scene, v, k, surfaceFrame, stream, out);
   }
   SetupEllipsoids(scene, v, out);
   uint64_t culled = 0;
