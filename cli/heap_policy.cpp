@@ -50,20 +50,21 @@ void KeepFreedMemoryInTheHeap() {
 
 #if defined(__GLIBC__)
 // Why: with Linux's transparent huge pages in "madvise" mode (Debian's default), only ranges
-// advised MADV_HUGEPAGE get 2 MB pages. The heap is not, so every block of a render is backed
-// by 4 KB pages: one fault per 4 KB when first written, and the frame's random reads of its
-// primitive constants (hundreds of MB for the 1.03 M-atom assembly) miss the TLB on nearly
-// every bin entry. glibc's own remedy, the tunable glibc.malloc.hugetlb=1, is read only from
+// advised MADV_HUGEPAGE get 2 MB pages. The heap is not, so every block of a render was backed
+// by 4 KB pages, each costing a fault when first written: the 1.03 M-atom assembly's reading,
+// bonds and representation took 776 ms with them, 552 with huge pages, and its whole process
+// as balls 2.15 s against 0.88 (docs/PERFORMANCE.md, stop 34). glibc's own remedy, the tunable glibc.malloc.hugetlb=1, is read only from
 // the environment at start-up; this does what it does for the heap a process begins with.
-// How: one large block taken and freed grows the heap's top by kHeapReserve without touching
-// it (no memory is used until written), the trim threshold above keeps it, and the range is
-// advised. The next allocations are carved from it, and each first write there faults in a
-// whole huge page. Beyond the reserve the heap grows with small pages as before.
+// How: one large block taken and freed grows the heap's top by a quarter of the machine's
+// memory, at most 1 GB, without touching it (no memory is used until written); the trim
+// threshold above keeps it, and the range is advised. The next allocations are carved from
+// it, and each first write there faults in a whole huge page. Beyond the reserve the heap grows
+// with small pages as before.
 void BackTheHeapWithHugePages() {
   constexpr size_t kHugePage = size_t(2) << 20;
   const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGESIZE);
   if (pages <= 0 || pageSize <= 0) return;
-  // A quarter of the machine's memory, at most 1 GB (below the 2 GB trim threshold).
+  // At most 1 GB: below the 2 GB trim threshold, so freeing the block keeps it.
   const size_t reserve = std::min(size_t(1) << 30, size_t(pages) * size_t(pageSize) / 4);
   void* block = std::malloc(reserve);
   if (block == nullptr) return;  // no room to grow: the heap stays as it is

@@ -545,7 +545,7 @@ HWY_INLINE void DrawRows(const detail::FrameConstants& fc, float zMin, const Pix
     const size_t replaced =
         narrow ? DrawRowSpan(d8, row, v, y, c, t, vec) : DrawRowSpan(d, row, v, y, c, t, vec);
     if (replaced == 0) continue;
-    if (rowFarthest == kBackground) {
+    if (rowFarthest == kBackground && t.rowOpen != nullptr) {  // without the counts: rescan
       uint32_t& open = t.rowOpen[y - t.y0];
       open -= uint32_t(replaced);
       if (open != 0) continue;  // background left: the row's farthest stays +inf

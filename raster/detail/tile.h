@@ -115,7 +115,7 @@ struct TileView {
   float* rowMax = nullptr;  // scratch, y1 − y0 floats: farthest depth of each tile row
   // Scratch, y1 − y0 counts: pixels of each row still at the background depth (+inf). While
   // one is left the row's farthest is +inf whatever else is drawn there, so the SIMD kernel
-  // need not rescan it (the scalar twin rescans and ignores this).
+  // need not rescan it (without them it rescans; the scalar twin rescans and ignores this).
   uint32_t* rowOpen = nullptr;
   float tileMax = 0;        // farthest depth in the tile (max of rowMax)
   size_t Index(int x, int y) const { return size_t(y - y0) * size_t(stride) + size_t(x - x0); }
