@@ -25,6 +25,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstdio>
 #endif
 
 namespace softmol::cli {
@@ -60,7 +61,19 @@ void KeepFreedMemoryInTheHeap() {
 // threshold above keeps it, and the range is advised. The next allocations are carved from
 // it, and each first write there faults in a whole huge page. Beyond the reserve the heap grows
 // with small pages as before.
+// Under strict overcommit accounting (vm.overcommit_memory = 2) the reserve would be charged in
+// full even where the work needs less, and the heap never gives it back: there, none is taken.
+bool StrictOvercommit() {
+  std::FILE* f = std::fopen("/proc/sys/vm/overcommit_memory", "r");
+  if (f == nullptr) return false;
+  int mode = 0;
+  const bool read = std::fscanf(f, "%d", &mode) == 1;
+  std::fclose(f);
+  return read && mode == 2;
+}
+
 void BackTheHeapWithHugePages() {
+  if (StrictOvercommit()) return;
   constexpr size_t kHugePage = size_t(2) << 20;
   const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGESIZE);
   if (pages <= 0 || pageSize <= 0) return;
