@@ -107,9 +107,8 @@ size_t TileKernelPass::Prepare(const raster::PrimitiveScene& scene, const raster
   // The CPU's draw order (raster/detail/setup.h FrontToBackOrder): exact depth ties between
   // primitives are broken by it on both backends (tests/gl exact_ties checks it).
   UninitVector<BinEntry> sorted;
-  UninitVector<uint32_t> buckets;
   Bins bins;
-  FrontToBackOrder(setup, fc, bins, buckets, sorted);
+  FrontToBackOrder(setup, bins, sorted);
   order.resize(sorted.size());
   for (size_t i = 0; i < sorted.size(); ++i) order[i] = sorted[i].code;
   return order.size();

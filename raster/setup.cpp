@@ -382,7 +382,7 @@ void ForEachBatch(size_t count, Batch&& batch) {
   });
 }
 
-// A batch of packed primitives, their bin entries and sort keys, made in the task's cache and
+// A batch of packed primitives, their bin entries and depth buckets, made in the task's cache and
 // then copied out as a whole. A large scene's output (192 MB for a million balls and sticks)
 // is far larger than the caches: written in place, every record's cache line was first read
 // from memory for ownership, and the packing stalled on those reads (its stores waiting in a
@@ -392,13 +392,13 @@ template <class Prim>
 struct PackedBatch {
   alignas(64) Prim prims[kSetupBatch];
   BinEntry entries[kSetupBatch];
-  uint32_t keys[kSetupBatch];
+  uint32_t buckets[kSetupBatch];
   void CopyOut(size_t first, size_t n, bool stream, UninitVector<Prim>& prim, UninitVector<BinEntry>& entry,
-               UninitVector<uint32_t>& key) const {
+               uint32_t* bucket) const {
     const auto copy = stream ? StreamCopy : [](void* d, const void* s, size_t b) { std::memcpy(d, s, b); };
     copy(prim.data() + first, prims, n * sizeof(Prim));
     copy(entry.data() + first, entries, n * sizeof(BinEntry));
-    copy(key.data() + first, keys, n * sizeof(uint32_t));
+    copy(bucket + first, buckets, n * sizeof(uint32_t));
     if (stream) StreamFence();
   }
 };
@@ -423,8 +423,10 @@ struct BatchPositions<double, kArrays> {
 
 // Spheres: vectorised batches (raster/setup_kernel.cpp), packed here.
 template <class T>
-void SetupSpheres(const PrimitiveScene& scene, const SetupConstants& k, bool stream, SetupOutput& out) {
+void SetupSpheres(const PrimitiveScene& scene, const ViewSetup& v, const SetupConstants& k, bool stream,
+                  SetupOutput& out) {
   const SphereSet& in = scene.spheres;
+  const DepthBucketer bucketOf(v);
   ForEachBatch(in.size(), [&](size_t first, size_t n) {
     SphereSetupLanes<T> lanes;
     PackedBatch<SpherePrim> packed;
@@ -440,7 +442,7 @@ void SetupSpheres(const PrimitiveScene& scene, const SetupConstants& k, bool str
       float zMin = 0.0f;
       if (lanes.valid[j] == 0.0) {
         p = SpherePrim{};
-        packed.keys[j] = kCulledKey;
+        packed.buckets[j] = kCulledKey;
       } else {
         p.cx = float(lanes.cx[j]), p.cy = float(lanes.cy[j]), p.cz = float(lanes.cz[j]);
         p.rr = float(lanes.rr[j]);
@@ -452,12 +454,12 @@ void SetupSpheres(const PrimitiveScene& scene, const SetupConstants& k, bool str
         p.color = in.color[i];
         p.id = uint32_t(i);
         box = {int32_t(lanes.x0[j]), int32_t(lanes.y0[j]), int32_t(lanes.x1[j]), int32_t(lanes.y1[j])};
-        packed.keys[j] = std::bit_cast<uint32_t>(zMin);
+        packed.buckets[j] = bucketOf(zMin);
       }
       p.box = box;
       packed.entries[j] = Entry(uint32_t(i) | (kSphereKind << kKindShift), zMin, box);
     }
-    packed.CopyOut(first, n, stream, out.spheres, out.sphereEntry, out.sphereKey);
+    packed.CopyOut(first, n, stream, out.spheres, out.sphereEntry, out.bucket.data());
   });
 }
 
@@ -466,6 +468,7 @@ template <class T>
 void SetupCylinders(const PrimitiveScene& scene, const ViewSetup& v, const SetupConstants& k, bool surfaceFrame,
                     bool stream, SetupOutput& out) {
   const CylinderSet& cyl = scene.cylinders;
+  const DepthBucketer bucketOf(v);
   ForEachBatch(cyl.size(), [&](size_t first, size_t n) {
     CylinderSetupLanes<T> lanes;
     PackedBatch<CylinderPrim> packed;
@@ -483,24 +486,26 @@ void SetupCylinders(const PrimitiveScene& scene, const ViewSetup& v, const Setup
       if (lanes.valid[j] == 0.0) {
         p = CylinderPrim{};
         p.box = box;
-        packed.keys[j] = kCulledKey;
+        packed.buckets[j] = kCulledKey;
       } else {
         PackCylinder(scene, v, i, lanes, j, radius[j], surfaceFrame, p);
         box = {int32_t(lanes.x0[j]), int32_t(lanes.y0[j]), int32_t(lanes.x1[j]), int32_t(lanes.y1[j])};
         zMin = float(lanes.zMin[j]);
-        packed.keys[j] = std::bit_cast<uint32_t>(zMin);
+        packed.buckets[j] = bucketOf(zMin);
       }
       packed.entries[j] = Entry(uint32_t(i) | (kCylinderKind << kKindShift), zMin, box);
     }
-    packed.CopyOut(first, n, stream, out.cylinders, out.cylinderEntry, out.cylinderKey);
+    packed.CopyOut(first, n, stream, out.cylinders, out.cylinderEntry, out.bucket.data() + scene.spheres.size());
   });
 }
 
 void SetupEllipsoids(const PrimitiveScene& scene, const ViewSetup& v, SetupOutput& out) {
+  const DepthBucketer bucketOf(v);
+  uint32_t* bucket = out.bucket.data() + scene.spheres.size() + scene.cylinders.size();
   tbb::parallel_for(tbb::blocked_range<size_t>(0, scene.ellipsoids.size(), 1024), [&](const auto& range) {
     for (size_t i = range.begin(); i != range.end(); ++i) {
       const EllipsoidPrim& p = out.ellipsoids[i];
-      out.ellipsoidKey[i] = SetupEllipsoid(scene, v, i, out.ellipsoids[i]) ? std::bit_cast<uint32_t>(p.zMin) : kCulledKey;
+      bucket[i] = SetupEllipsoid(scene, v, i, out.ellipsoids[i]) ? bucketOf(p.zMin) : kCulledKey;
       out.ellipsoidEntry[i] = Entry(uint32_t(i) | (kEllipsoidKind << kKindShift), p.zMin, p.box);
     }
   });
@@ -508,28 +513,24 @@ void SetupEllipsoids(const PrimitiveScene& scene, const ViewSetup& v, SetupOutpu
 
 }  // namespace
 
-uint64_t SetupPrimitives(const PrimitiveScene& scene, const ViewSetup& v, SetupOutput& out,
-                         bool surfaceFrame) {
+void SetupPrimitives(const PrimitiveScene& scene, const ViewSetup& v, SetupOutput& out,
+                     bool surfaceFrame) {
   const size_t nS = scene.spheres.size(), nC = scene.cylinders.size(), nE = scene.ellipsoids.size();
-  out.spheres.resize(nS), out.sphereKey.resize(nS), out.sphereEntry.resize(nS);
-  out.cylinders.resize(nC), out.cylinderKey.resize(nC), out.cylinderEntry.resize(nC);
-  out.ellipsoids.resize(nE), out.ellipsoidKey.resize(nE), out.ellipsoidEntry.resize(nE);
+  out.spheres.resize(nS), out.sphereEntry.resize(nS);
+  out.cylinders.resize(nC), out.cylinderEntry.resize(nC);
+  out.ellipsoids.resize(nE), out.ellipsoidEntry.resize(nE);
+  out.bucket.resize(nS + nC + nE);
   const SetupConstants k = MakeSetupConstants(v);
   const size_t bytes = nS * (sizeof(SpherePrim) + sizeof(BinEntry) + 4) + nC * (sizeof(CylinderPrim) + sizeof(BinEntry) + 4);
   const bool stream = bytes >= kStreamSetupFrom;
   if (v.floatSetup) {
-    SetupSpheres<float>(scene, k, stream, out);
+    SetupSpheres<float>(scene, v, k, stream, out);
     SetupCylinders<float>(scene, v, k, surfaceFrame, stream, out);
   } else {
-    SetupSpheres<double>(scene, k, stream, out);
+    SetupSpheres<double>(scene, v, k, stream, out);
     SetupCylinders<double>(scene, v, k, surfaceFrame, stream, out);
   }
   SetupEllipsoids(scene, v, out);
-  uint64_t culled = 0;
-  for (uint32_t key : out.sphereKey) culled += key == kCulledKey ? 1 : 0;
-  for (uint32_t key : out.cylinderKey) culled += key == kCulledKey ? 1 : 0;
-  for (uint32_t key : out.ellipsoidKey) culled += key == kCulledKey ? 1 : 0;
-  return culled;
 }
 
 }  // namespace softmol::raster::detail

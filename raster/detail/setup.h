@@ -56,36 +56,55 @@ bool TangentBounds(bool ortho, const glm::dvec3& c, const double S[3][3], int ax
 // (raster/setup_kernel.cpp), which gives the same CylinderPrim bit for bit (tested).
 bool SetupCylinder(const PrimitiveScene& scene, const ViewSetup& view, size_t i, CylinderPrim& p, bool surfaceFrame);
 
-// Sets up every primitive; returns the number culled. Culled primitives get an empty box.
+// Nearest depth → one of kDepthBuckets levels over [near, far] (FrameConstants' float near and
+// far): zMin ≥ near − 1e-5·near, so q > −1 (clamped to level 0); from the last level on,
+// everything shares it. (To uint32_t, not size_t: x86-64 converts a float to a signed integer
+// in one instruction, to an unsigned 64-bit one only with a compare and a fix-up.)
+inline constexpr uint32_t kDepthBuckets = 4096;
+struct DepthBucketer {
+  float zLo, zScale;
+  explicit DepthBucketer(const ViewSetup& v)
+      : zLo(float(v.nearPlane)),
+        zScale(float(kDepthBuckets) / (float(v.farPlane) - float(v.nearPlane))) {}
+  uint32_t operator()(float zMin) const {
+    const float q = (zMin - zLo) * zScale;
+    return q < float(kDepthBuckets - 1) ? uint32_t(q > 0.0f ? q : 0.0f) : kDepthBuckets - 1;
+  }
+};
+
+// Sets up every primitive. Culled primitives get an empty box and kCulledKey as bucket.
 // Spheres and cylinders, a frame's bulk, are UninitVectors (common/uninit_vector.h): the
 // parallel setup writes every element, a culled primitive as all zeros but its empty box.
 struct SetupOutput {
   UninitVector<SpherePrim> spheres;
   UninitVector<CylinderPrim> cylinders;
   std::vector<EllipsoidPrim> ellipsoids;
-  // Sort keys: bits of zMin (non-negative float, so integer order = float order), or
-  // kCulledKey for a culled primitive.
-  UninitVector<uint32_t> sphereKey, cylinderKey;
-  std::vector<uint32_t> ellipsoidKey;
+  // The sort key of every primitive, spheres then cylinders then ellipsoids: its depth
+  // bucket (DepthBucketer), or kCulledKey for a culled one. One array, made by the setup that
+  // knows zMin, so that FrontToBackOrder reads it once per pass and quantises nothing.
+  UninitVector<uint32_t> bucket;
   // What binning needs of each primitive (code, zMin, box), written by setup so that
   // sorting and binning never touch the full primitive constants.
   UninitVector<BinEntry> sphereEntry, cylinderEntry;
   std::vector<BinEntry> ellipsoidEntry;
+  bool SphereVisible(size_t i) const { return bucket[i] != kCulledKey; }
+  bool CylinderVisible(size_t i) const { return bucket[spheres.size() + i] != kCulledKey; }
+  bool EllipsoidVisible(size_t i) const {
+    return bucket[spheres.size() + cylinders.size() + i] != kCulledKey;
+  }
 };
 // `surfaceFrame`: also build the cylinders' angular frames (only kSurfaceCoord reads them).
-uint64_t SetupPrimitives(const PrimitiveScene& scene, const ViewSetup& view, SetupOutput& out,
-                         bool surfaceFrame = true);
+void SetupPrimitives(const PrimitiveScene& scene, const ViewSetup& view, SetupOutput& out,
+                     bool surfaceFrame = true);
 
 // The front-to-back draw order: visible primitives in id order (spheres, cylinders,
 // ellipsoids), stably sorted by their nearest depth quantised to kDepthBuckets levels over
-// [near, far] (ample for ordering). Exact depth ties between primitives are broken by this
-// order, so every backend must draw in it: raster/frame.cpp bins from it, the GL mirror
-// (gl/tile_kernel.cpp) draws in it. Fills `order` (one BinEntry per visible primitive);
-// `bins` and `buckets` are scratch. Threads: the current TBB arena; the order is the same for
+// [near, far] (ample for ordering; SetupOutput::bucket). Exact depth ties between primitives
+// are broken by this order, so every backend must draw in it: raster/frame.cpp bins from it,
+// the GL mirror (gl/tile_kernel.cpp) draws in it. Fills `order` (one BinEntry per visible
+// primitive); `bins` is scratch. Threads: the current TBB arena; the order is the same for
 // any count. A sphere identical bit for bit to one before it in this order is left out (it can
 // never show: raster/frame.cpp says why); returns how many were.
-inline constexpr uint32_t kDepthBuckets = 4096;
-size_t FrontToBackOrder(const SetupOutput& setup, const FrameConstants& fc, Bins& bins,
-                      UninitVector<uint32_t>& buckets, UninitVector<BinEntry>& order);
+size_t FrontToBackOrder(const SetupOutput& setup, Bins& bins, UninitVector<BinEntry>& order);
 
 }  // namespace softmol::raster::detail

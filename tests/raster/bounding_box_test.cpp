@@ -55,20 +55,20 @@ void CheckScene(const test::NamedScene& s, int& tightChecked) {
       one.spheres.Add({s.scene.spheres.x[i], s.scene.spheres.y[i], s.scene.spheres.z[i]},
                       s.scene.spheres.radius[i], 1);
       box = setup.spheres[i].box;
-      visible = setup.sphereKey[i] != detail::kCulledKey;
+      visible = setup.SphereVisible(i);
     } else if (i >= nS + s.scene.cylinders.size()) {
       const EllipsoidSet& el = s.scene.ellipsoids;
       const size_t j = i - nS - s.scene.cylinders.size();
       one.ellipsoids.Add({el.x[j], el.y[j], el.z[j]}, el.axes[j], 1);
       box = setup.ellipsoids[j].box;
-      visible = setup.ellipsoidKey[j] != detail::kCulledKey;
+      visible = setup.EllipsoidVisible(j);
     } else {
       const CylinderSet& c = s.scene.cylinders;
       const size_t j = i - nS;
       one.cylinders.Add({c.x0[j], c.y0[j], c.z0[j]}, {c.x1[j], c.y1[j], c.z1[j]}, c.radius[j], 1,
                         1);
       box = setup.cylinders[j].box;
-      visible = setup.cylinderKey[j] != detail::kCulledKey;
+      visible = setup.CylinderVisible(j);
     }
     const Extent e = ReferenceExtent(one, cam);
     if (e.count == 0) continue;

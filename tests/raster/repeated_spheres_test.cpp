@@ -3,6 +3,8 @@
 // G-buffer of one, every channel and the id included, and the work stays that of one.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "raster/camera.h"
 #include "raster/frame.h"
 #include "tests/support/gbuffer_bytes.h"
@@ -27,6 +29,7 @@ TEST(RepeatedSpheres, ManyCopiesDrawExactlyTheGBufferOfOne) {
   // and colours of the picture stay those of the scene drawn once.
   constexpr size_t kCopies = 40000;  // > the 16384 per depth bucket that start the search
   for (size_t i = 0; i < kCopies; ++i) many.spheres.Add({0.0, 0.0, 0.0}, 1.7f, 0xffffffu);
+  many.spheres.Add({std::nan(""), 0.0, 0.0}, 1.0f, 0xffffffu);  // culled: counted apart
   const Camera camera = DefaultCamera(once, 160, 120);
   for (const bool contour : {false, true}) {
     FrameOptions options;
@@ -38,6 +41,8 @@ TEST(RepeatedSpheres, ManyCopiesDrawExactlyTheGBufferOfOne) {
     EXPECT_EQ(test::GBufferBytes(a), test::GBufferBytes(b));  // every plane, bit for bit
     EXPECT_EQ(sa.spheresRepeated, 0u);
     EXPECT_EQ(sb.spheresRepeated, kCopies);
+    EXPECT_EQ(sa.primitivesCulled, 0u);
+    EXPECT_EQ(sb.primitivesCulled, 1u);  // the repeats are not culled, the NaN one is
     EXPECT_EQ(sb.binEntries, sa.binEntries);  // the copies cost nothing past the order
     EXPECT_EQ(sb.fragmentsTested, sa.fragmentsTested);
   }

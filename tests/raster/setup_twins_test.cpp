@@ -53,8 +53,8 @@ size_t ExpectTwinsAgree(const test::NamedScene& s, const detail::ViewSetup& view
     detail::CylinderPrim scalar;
     std::memset(&scalar, 0, sizeof scalar);
     const bool visible = detail::SetupCylinder(s.scene, view, i, scalar, surfaceFrame);
-    EXPECT_EQ(out.cylinderKey[i] != detail::kCulledKey, visible) << where << " cylinder " << i;
-    if (!visible || out.cylinderKey[i] == detail::kCulledKey) continue;
+    EXPECT_EQ(out.CylinderVisible(i), visible) << where << " cylinder " << i;
+    if (!visible || !out.CylinderVisible(i)) continue;
     ++kept;
     EXPECT_EQ(std::memcmp(&scalar, &out.cylinders[i], sizeof scalar), 0) << where << " cylinder " << i;
   }
@@ -84,16 +84,18 @@ TEST(RasterSetupTwins, VectorisedCylinderSetupEqualsTheScalarOneBitForBit) {
 
 // The setup arrays leave new elements unset (common/uninit_vector.h), so setup writes every
 // one: run over arrays full of garbage, a culled primitive comes back as zeros with an empty
-// box, and every key and bin entry is written.
+// box, and every depth bucket and bin entry is written.
 TEST(RasterSetupTwins, EveryPrimitiveIsWrittenAndCulledOnesAreZeros) {
   const test::NamedScene s = Scenes().back();  // the eye inside: many culled
   const detail::ViewSetup view = detail::MakeViewSetup(s.camera, s.scene);
   detail::SetupOutput out;
   detail::SetupPrimitives(s.scene, view, out);
   auto garbage = [](auto& v) { std::memset(static_cast<void*>(v.data()), 0xA5, v.size() * sizeof(v[0])); };
-  garbage(out.spheres), garbage(out.cylinders), garbage(out.sphereKey), garbage(out.cylinderKey);
+  garbage(out.spheres), garbage(out.cylinders), garbage(out.bucket);
   garbage(out.sphereEntry), garbage(out.cylinderEntry);
-  const uint64_t culled = detail::SetupPrimitives(s.scene, view, out);  // same sizes: no reallocation
+  detail::SetupPrimitives(s.scene, view, out);  // same sizes: no reallocation
+  size_t culled = 0;
+  for (uint32_t b : out.bucket) culled += b == detail::kCulledKey ? 1 : 0;
   EXPECT_GT(culled, 100u);
   auto zerosButTheBox = [](auto p) {
     EXPECT_TRUE(p.box.x0 == 0 && p.box.y0 == 0 && p.box.x1 == -1 && p.box.y1 == -1);
@@ -102,14 +104,14 @@ TEST(RasterSetupTwins, EveryPrimitiveIsWrittenAndCulledOnesAreZeros) {
     return std::all_of(b, b + sizeof p, [](unsigned char c) { return c == 0; });
   };
   for (size_t i = 0; i < out.spheres.size(); ++i) {
-    ASSERT_NE(out.sphereKey[i], 0xA5A5A5A5u) << i;
+    ASSERT_NE(out.bucket[i], 0xA5A5A5A5u) << i;
     ASSERT_NE(out.sphereEntry[i].code, 0xA5A5A5A5u) << i;
-    if (out.sphereKey[i] == detail::kCulledKey) EXPECT_TRUE(zerosButTheBox(out.spheres[i])) << "sphere " << i;
+    if (!out.SphereVisible(i)) EXPECT_TRUE(zerosButTheBox(out.spheres[i])) << "sphere " << i;
   }
   for (size_t i = 0; i < out.cylinders.size(); ++i) {
-    ASSERT_NE(out.cylinderKey[i], 0xA5A5A5A5u) << i;
+    ASSERT_NE(out.bucket[out.spheres.size() + i], 0xA5A5A5A5u) << i;
     ASSERT_NE(out.cylinderEntry[i].code, 0xA5A5A5A5u) << i;
-    if (out.cylinderKey[i] == detail::kCulledKey) EXPECT_TRUE(zerosButTheBox(out.cylinders[i])) << "cylinder " << i;
+    if (!out.CylinderVisible(i)) EXPECT_TRUE(zerosButTheBox(out.cylinders[i])) << "cylinder " << i;
   }
 }
 

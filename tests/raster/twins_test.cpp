@@ -92,14 +92,14 @@ void RunScenes(Edges mode, EdgeCounts& counts) {
       entries.push_back({code, zMin, int16_t(b.x0), int16_t(b.y0), int16_t(b.x1), int16_t(b.y1)});
     };
     for (size_t i = 0; i < setup.spheres.size(); ++i)
-      if (setup.sphereKey[i] != detail::kCulledKey)
+      if (setup.SphereVisible(i))
         add(setup.spheres[i].box, setup.spheres[i].zMin, uint32_t(i));
     for (size_t i = 0; i < setup.cylinders.size(); ++i)
-      if (setup.cylinderKey[i] != detail::kCulledKey)
+      if (setup.CylinderVisible(i))
         add(setup.cylinders[i].box, setup.cylinders[i].zMin,
             uint32_t(i) | (detail::kCylinderKind << detail::kKindShift));
     for (size_t i = 0; i < setup.ellipsoids.size(); ++i)
-      if (setup.ellipsoidKey[i] != detail::kCulledKey)
+      if (setup.EllipsoidVisible(i))
         add(setup.ellipsoids[i].box, setup.ellipsoids[i].zMin,
             uint32_t(i) | (detail::kEllipsoidKind << detail::kKindShift));
     std::stable_sort(entries.begin(), entries.end(),
