@@ -58,8 +58,8 @@ bool SetupCylinder(const PrimitiveScene& scene, const ViewSetup& view, size_t i,
 
 // Nearest depth → one of kDepthBuckets levels over [near, far] (FrameConstants' float near and
 // far): zMin ≥ near − 1e-5·near, so q > −1 (clamped to level 0); from the last level on,
-// everything shares it. (To uint32_t, not size_t: x86-64 converts a float to a signed integer
-// in one instruction, to an unsigned 64-bit one only with a compare and a fix-up.)
+// everything shares it. (Through int32_t: x86-64 converts a float to a signed integer in one
+// instruction, also in vectors, to an unsigned one only with a compare and a fix-up.)
 inline constexpr uint32_t kDepthBuckets = 4096;
 struct DepthBucketer {
   float zLo, zScale;
@@ -68,7 +68,7 @@ struct DepthBucketer {
         zScale(float(kDepthBuckets) / (float(v.farPlane) - float(v.nearPlane))) {}
   uint32_t operator()(float zMin) const {
     const float q = (zMin - zLo) * zScale;
-    return q < float(kDepthBuckets - 1) ? uint32_t(q > 0.0f ? q : 0.0f) : kDepthBuckets - 1;
+    return q < float(kDepthBuckets - 1) ? uint32_t(int32_t(q > 0.0f ? q : 0.0f)) : kDepthBuckets - 1;
   }
 };
 
