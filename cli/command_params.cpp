@@ -47,6 +47,23 @@ void ParamInputs::AddOptions(CLI::App& command, std::vector<Shape> shapes, const
   }
 }
 
+// Whether `text`, taken by CLI11 as a flag's value, is one of this command's own flags
+// ("-o", "--quiet", "--size=…"): then the value was left out, as in `--profile -o x.png`,
+// which would otherwise write the profile to a file named "-o".
+bool ParamInputs::NamesAFlag(const std::string& text) const {
+  if (text == "-h" || text == "--help") return true;
+  if (text.size() == 2 && text[0] == '-') {
+    for (const Shape& s : shapes_)
+      if (s.shortName == text[1]) return true;
+    return false;
+  }
+  if (text.rfind("--", 0) != 0) return false;
+  const std::string name = text.substr(2, text.find('=') - 2);
+  for (const Shape& s : shapes_)
+    if (s.name == name) return true;
+  return false;
+}
+
 // Bundle values come first, then scene values, then flags; each occurrence of a repeatable
 // flag in turn.
 constexpr size_t kSceneOrder = size_t(1) << 20;
@@ -65,6 +82,10 @@ void ParamInputs::CollectFlags() {
     if (!s.repeatable && occurrence > 0) continue;  // CLI11 kept one value
     std::string text = s.isSwitch ? "true" : s.repeatable ? options_[i]->results().at(occurrence) : texts_[i];
     if (text.empty() && !s.implicitValue.empty()) text = s.implicitValue;
+    if (!s.isSwitch && NamesAFlag(text))
+      throw io::InputError(io::FlagLocation(s.name), "expects " + (s.hint.empty() ? std::string("a value") : s.hint) +
+                                                        ", not the option " + text + " (a file of that name: ./" +
+                                                        text + ")");
     given_.push_back({i, text, io::FlagLocation(s.name), kFlagOrder + k});
   }
 }

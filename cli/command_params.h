@@ -69,6 +69,7 @@ class ParamInputs {
   void AddSceneValue(size_t param, std::string text, const io::SourceLocation& where);
   void AddSceneList(size_t param, const io::SceneSetting& setting, const io::SourceLocation& where);
   size_t Rank(size_t param) const;  // the first parameter of its sequence
+  bool NamesAFlag(const std::string& text) const;
 
   CLI::App* command_ = nullptr;
   std::vector<Shape> shapes_;
