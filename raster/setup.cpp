@@ -403,12 +403,6 @@ struct PackedBatch {
   }
 };
 
-// The depth buckets of a batch, in a loop of their own (which the compiler vectorises).
-template <class T>
-void BucketBatch(const DepthBucketer& bucketOf, const T* zMin, const T* valid, size_t n, uint32_t* out) {
-  for (size_t j = 0; j < n; ++j) out[j] = valid[j] != T(0) ? bucketOf(float(zMin[j])) : kCulledKey;
-}
-
 // Above this many bytes of setup output, PackedBatch streams (a last-level cache's worth).
 constexpr size_t kStreamSetupFrom = size_t(32) << 20;
 
@@ -441,7 +435,7 @@ void SetupSpheres(const PrimitiveScene& scene, const ViewSetup& v, const SetupCo
     for (size_t j = 0; j < n; ++j) radius[j] = T(in.radius[first + j]);
     SetupSpheresBatch(k, at.Of(in.x, first, n, 0), at.Of(in.y, first, n, 1), at.Of(in.z, first, n, 2), radius, n,
                       lanes);
-    BucketBatch(bucketOf, lanes.zMin, lanes.valid, n, packed.buckets);
+    DepthBucketsBatch(bucketOf, lanes.zMin, lanes.valid, n, packed.buckets);
     for (size_t j = 0; j < n; ++j) {
       const size_t i = first + j;
       SpherePrim& p = packed.prims[j];
@@ -483,7 +477,7 @@ void SetupCylinders(const PrimitiveScene& scene, const ViewSetup& v, const Setup
     const CylinderEnds<T> ends{at.Of(cyl.x0, first, n, 0), at.Of(cyl.y0, first, n, 1), at.Of(cyl.z0, first, n, 2),
                                at.Of(cyl.x1, first, n, 3), at.Of(cyl.y1, first, n, 4), at.Of(cyl.z1, first, n, 5)};
     SetupCylindersBatch(k, ends, radius, n, lanes);
-    BucketBatch(bucketOf, lanes.zMin, lanes.valid, n, packed.buckets);
+    DepthBucketsBatch(bucketOf, lanes.zMin, lanes.valid, n, packed.buckets);
     for (size_t j = 0; j < n; ++j) {
       const size_t i = first + j;
       CylinderPrim& p = packed.prims[j];

@@ -8,6 +8,10 @@
 #define HWY_TARGET_INCLUDE "raster/setup_kernel.cpp"
 #include "raster/detail/setup_kernel.h"
 
+#include <type_traits>
+
+#include "raster/detail/setup.h"
+
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
@@ -273,6 +277,43 @@ void SetupCylindersFloatImpl(const detail::SetupConstants& k, const detail::Cyli
   SetupCylinders(k, e, r, n, o);
 }
 
+// ---- Depth buckets: DepthBucketer (raster/detail/setup.h) in lanes ----
+
+template <class T>
+void DepthBuckets(const detail::DepthBucketer& bucketOf, const T* zMin, const T* valid, size_t n,
+                  uint32_t* out) {
+  const hn::ScalableTag<T> dt;
+  const hn::Rebind<float, decltype(dt)> df;  // as many lanes as dt
+  const hn::Rebind<int32_t, decltype(dt)> di;
+  const size_t lanes = hn::Lanes(dt);
+  auto toFloat = [&](hn::Vec<decltype(dt)> v) {
+    if constexpr (std::is_same_v<T, float>) return v;
+    else return hn::DemoteTo(df, v);  // rounds to nearest, as float(double)
+  };
+  const auto zLo = hn::Set(df, bucketOf.zLo), zScale = hn::Set(df, bucketOf.zScale);
+  const auto last = hn::Set(df, float(detail::kDepthBuckets - 1));
+  const auto zero = hn::Zero(df);
+  size_t j = 0;
+  for (; j + lanes <= n; j += lanes) {
+    const auto q = hn::Mul(hn::Sub(toFloat(hn::LoadU(dt, zMin + j)), zLo), zScale);
+    const auto level = hn::ConvertTo(di, hn::IfThenElse(hn::Gt(q, zero), q, zero));  // truncates
+    const auto bucket = hn::IfThenElse(hn::RebindMask(di, hn::Lt(q, last)), level,
+                                       hn::Set(di, int32_t(detail::kDepthBuckets - 1)));
+    const auto visible = hn::RebindMask(di, hn::Ne(toFloat(hn::LoadU(dt, valid + j)), zero));
+    const auto culled = hn::Set(di, int32_t(detail::kCulledKey));  // all ones
+    hn::StoreU(hn::IfThenElse(visible, bucket, culled), di, reinterpret_cast<int32_t*>(out + j));
+  }
+  for (; j < n; ++j) out[j] = valid[j] != T(0) ? bucketOf(float(zMin[j])) : detail::kCulledKey;
+}
+void DepthBucketsImpl(const detail::DepthBucketer& b, const double* zMin, const double* valid, size_t n,
+                      uint32_t* out) {
+  DepthBuckets(b, zMin, valid, n, out);
+}
+void DepthBucketsFloatImpl(const detail::DepthBucketer& b, const float* zMin, const float* valid, size_t n,
+                           uint32_t* out) {
+  DepthBuckets(b, zMin, valid, n, out);
+}
+
 }  // namespace softmol::raster::HWY_NAMESPACE
 HWY_AFTER_NAMESPACE();
 
@@ -282,6 +323,14 @@ HWY_EXPORT(SetupSpheresImpl);
 HWY_EXPORT(SetupSpheresFloatImpl);
 HWY_EXPORT(SetupCylindersImpl);
 HWY_EXPORT(SetupCylindersFloatImpl);
+HWY_EXPORT(DepthBucketsImpl);
+HWY_EXPORT(DepthBucketsFloatImpl);
+void DepthBucketsBatch(const DepthBucketer& b, const double* zMin, const double* valid, size_t n, uint32_t* out) {
+  HWY_DYNAMIC_DISPATCH(DepthBucketsImpl)(b, zMin, valid, n, out);
+}
+void DepthBucketsBatch(const DepthBucketer& b, const float* zMin, const float* valid, size_t n, uint32_t* out) {
+  HWY_DYNAMIC_DISPATCH(DepthBucketsFloatImpl)(b, zMin, valid, n, out);
+}
 void SetupCylindersBatch(const SetupConstants& k, const CylinderEnds<double>& ends, const double* r, size_t n,
                          CylinderSetupLanes<double>& o) {
   HWY_DYNAMIC_DISPATCH(SetupCylindersImpl)(k, ends, r, n, o);

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 
 namespace softmol::raster::detail {
 
@@ -52,5 +53,13 @@ void SetupCylindersBatch(const SetupConstants& k, const CylinderEnds<double>& en
                          CylinderSetupLanes<double>& out);
 void SetupCylindersBatch(const SetupConstants& k, const CylinderEnds<float>& ends, const float* r, size_t n,
                          CylinderSetupLanes<float>& out);
+
+// The depth buckets of a batch's zMin lanes, bucketOf lane for lane (the same bits): kCulledKey
+// where valid is 0.
+struct DepthBucketer;  // raster/detail/setup.h
+void DepthBucketsBatch(const DepthBucketer& bucketOf, const double* zMin, const double* valid, size_t n,
+                       uint32_t* out);
+void DepthBucketsBatch(const DepthBucketer& bucketOf, const float* zMin, const float* valid, size_t n,
+                       uint32_t* out);
 
 }  // namespace softmol::raster::detail

@@ -82,6 +82,37 @@ TEST(RasterSetupTwins, VectorisedCylinderSetupEqualsTheScalarOneBitForBit) {
   EXPECT_GT(kept, size_t(targets) * 4000u) << "the scenes should keep most of their cylinders";
 }
 
+// The depth buckets come from lanes too (DepthBucketsBatch): on every target and in both
+// precisions, each is DepthBucketer's of the primitive's zMin, and kCulledKey exactly for the
+// culled primitives (those with an empty box).
+TEST(RasterSetupTwins, DepthBucketsInLanesEqualTheScalarBucketer) {
+  const std::vector<test::NamedScene> scenes = Scenes();
+  size_t checked = 0;
+  for (const uint32_t target : hwy::SupportedAndGeneratedTargets()) {
+    hwy::SetSupportedTargetsForTest(target);
+    for (const test::NamedScene& s : scenes) {
+      for (const bool floatSetup : {false, true}) {
+        detail::ViewSetup view = detail::MakeViewSetup(s.camera, s.scene);
+        view.floatSetup = floatSetup;
+        detail::SetupOutput out;
+        detail::SetupPrimitives(s.scene, view, out);
+        const detail::DepthBucketer bucketOf(view);
+        const std::string where = std::string(hwy::TargetName(target)) + " " + s.name + (floatSetup ? " float" : "");
+        auto expect = [&](const detail::BinEntry& e, uint32_t bucket, size_t g) {
+          const bool culled = e.x1 < e.x0;
+          ASSERT_EQ(bucket, culled ? detail::kCulledKey : bucketOf(e.zMin)) << where << " primitive " << g;
+          ++checked;
+        };
+        for (size_t i = 0; i < out.spheres.size(); ++i) expect(out.sphereEntry[i], out.bucket[i], i);
+        for (size_t i = 0; i < out.cylinders.size(); ++i)
+          expect(out.cylinderEntry[i], out.bucket[out.spheres.size() + i], out.spheres.size() + i);
+      }
+    }
+  }
+  hwy::SetSupportedTargetsForTest(0);
+  EXPECT_GT(checked, 10000u);
+}
+
 // The setup arrays leave new elements unset (common/uninit_vector.h), so setup writes every
 // one: run over arrays full of garbage, a culled primitive comes back as zeros with an empty
 // box, and every depth bucket and bin entry is written.
