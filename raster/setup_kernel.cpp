@@ -3,7 +3,8 @@
 // double precision (and, to price that choice, the same text over float lanes), dispatched once
 // per batch. Same operations as a scalar evaluation (Add Sub
 // Mul Div Sqrt Floor Ceil, compares, selects; no fused ops), so every target computes the same
-// boxes and keys; the cylinder lanes follow detail::SetupCylinder operation for operation.
+// boxes and keys; the cylinder lanes follow detail::SetupCylinder operation for operation, the
+// depth buckets detail::DepthBucketer.
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "raster/setup_kernel.cpp"
 #include "raster/detail/setup_kernel.h"
