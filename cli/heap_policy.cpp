@@ -54,8 +54,9 @@ void KeepFreedMemoryInTheHeap() {
 // advised MADV_HUGEPAGE get 2 MB pages. The heap is not, so every block of a render was backed
 // by 4 KB pages, each costing a fault when first written: the 1.03 M-atom assembly's reading,
 // bonds and representation took 776 ms with them, 552 with huge pages, and its whole process
-// as balls 2.15 s against 0.88 (docs/PERFORMANCE.md, stop 34). glibc's own remedy, the tunable glibc.malloc.hugetlb=1, is read only from
-// the environment at start-up; this does what it does for the heap a process begins with.
+// as balls 2.15 s against 0.88 (docs/PERFORMANCE.md, stop 34). glibc's own remedy, the tunable
+// glibc.malloc.hugetlb=1, is read only from the environment at start-up; this does what it
+// does for the heap a process begins with.
 // How: one large block taken and freed grows the heap's top by a quarter of the machine's
 // memory, at most 1 GB, without touching it (no memory is used until written); the trim
 // threshold above keeps it, and the range is advised. The next allocations are carved from

@@ -46,7 +46,7 @@ struct RenderOptions {
   bool transparent = false;              // background alpha 0 instead of the background colour
   bool color = true;                     // false: only the AOVs are wanted (no shading pass)
   uint32_t aovs = 0;                     // Aov bits
-  int tileSize = 64;  // raster::FrameOptions::tileSize
+  int tileSize = raster::FrameOptions{}.tileSize;  // declared there once
   // Run the pass after the G-buffer inside its tiles where it can (the fused tile pipeline,
   // effects/frame_renderer.cpp): the same bytes either way, false only to time the passes apart.
   bool fuseTiles = true;

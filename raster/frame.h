@@ -19,7 +19,8 @@ enum class SetupPrecision : uint8_t { kDouble, kFloat };
 struct FrameOptions {
   // Pixels, a power of two in [8, 128] (below 16 wastes AVX-512 lanes). 64: fewer lists to
   // bin into and fewer entries per primitive than 32, and a tile's planes still fit in L2
-  // (docs/PERFORMANCE.md, "Tile size"); the bytes are the same for every size.
+  // (docs/PERFORMANCE.md, "Depth buckets from setup, 64-pixel tiles"); the bytes are the same
+  // for every size.
   int tileSize = 64;
   uint32_t channels = kDepth | kNormal | kBaseColor | kPrimitiveId;
   // Contour lines (Tarini et al. 2006 §5.1), spheres and cylinders (not ellipsoids): rays

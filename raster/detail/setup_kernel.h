@@ -1,9 +1,10 @@
 // raster/detail/setup_kernel.h — vectorised sphere and cylinder setup (raster/setup_kernel.cpp):
 // eye-space constants, tight boxes (Sigg et al. eq. 5: S = r²I for a sphere, r²(I − wwᵀ) for a
 // cylinder's end discs), nearest depths and their depth buckets for a batch, as
-// structure-of-arrays lanes that setup.cpp then packs into SpherePrim / CylinderPrim. In double (what renders use); in float only to price
-// that choice (FrameOptions::setupPrecision, `softmol study`): the same kernel text over float
-// lanes and float positions, as a GPU vertex stage computes them. The double cylinder kernel's
+// structure-of-arrays lanes that setup.cpp then packs into SpherePrim / CylinderPrim. In double
+// (what renders use); in float only to price that choice (FrameOptions::setupPrecision,
+// `softmol study`): the same kernel text over float lanes and float positions, as a GPU vertex
+// stage computes them. The double cylinder kernel's
 // scalar twin is detail::SetupCylinder (raster/setup.cpp), which it equals bit for bit.
 #pragma once
 

@@ -49,8 +49,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"directory", "render %D -o %O", "softmol_test_bad_directory"},
         BadCase{"unknown_option", "render " + kPept + " -o %O --frobnicate", "--frobnicate"},
         // A file option followed by a flag: its value was left out (no profile named "-o").
-        BadCase{"flag_as_a_file_name", "render " + kPept + " --profile -o %O", "--profile"},
-        BadCase{"long_flag_as_a_file_name", "render " + kPept + " -o --quiet", "--quiet"},
+        BadCase{"flag_as_a_file_name", "render " + kPept + " --profile -o %O", "--profile: expects"},
+        BadCase{"long_flag_as_a_file_name", "render " + kPept + " -o --quiet", "not the option --quiet"},
         BadCase{"bad_size", "render " + kPept + " -o %O --size 10x", "--size"},
         BadCase{"zero_size", "render " + kPept + " -o %O --size 0x100", "--size"},
         BadCase{"huge_size", "render " + kPept + " -o %O --size 100000x100000", "--size"},
